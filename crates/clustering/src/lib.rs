@@ -1,0 +1,1 @@
+//! clustering crate (under construction).

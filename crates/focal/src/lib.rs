@@ -1,0 +1,1 @@
+//! focal crate (under construction).
