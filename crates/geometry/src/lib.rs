@@ -3,17 +3,36 @@
 //! * [`Correspondences`] and [`FundamentalMatrix`]: checked input types.
 //! * [`sampson`]: the Sampson (Eq. 23) and symmetric epipolar (Eq. 24)
 //!   distances, single-point and batch forms, and the FROB distance (Eq. 45).
+//! * [`eight_point`]: the 8-point algorithm (step 2) in three variants,
+//!   plain, Hartley-normalised and weighted, each followed by rank-2
+//!   enforcement.
+//! * [`irls`]: IRLS-Tukey refinement of a hypothesis (step 3, Section 5.2.1;
+//!   Eqs. 33–34).
 //!
 //! Convention everywhere: a match (x1 ↔ x2) satisfies `x2ᵀ F x1 = 0`, with
-//! homogeneous pixel coordinates `x = (x, y, 1)`.
+//! homogeneous pixel coordinates `x = (x, y, 1)`, `F` stored row-major in
+//! the 8-point design rows.
 
+#![warn(missing_docs)]
+
+pub mod eight_point;
 pub mod error;
+pub mod irls;
+mod linalg;
 pub mod sampson;
 pub mod types;
 
+pub use eight_point::{
+    eight_point_normalized, eight_point_plain, eight_point_weighted, enforce_rank2, MIN_POINTS,
+    RANK_TOLERANCE,
+};
 pub use error::GeometryError;
+pub use irls::{
+    median_absolute_deviation, median_in_place, refine_irls_tukey, tukey_weight, IrlsParams,
+    IrlsSummary, IrlsWorkspace, RefinedModel, MAD_TO_SIGMA,
+};
 pub use sampson::{
     frob_distance, sampson_distance, sampson_distance_signed, sampson_distance_squared,
-    sampson_distances_squared, symmetric_epipolar_distance,
+    sampson_distances_squared, sampson_residuals_signed, symmetric_epipolar_distance,
 };
 pub use types::{Correspondences, FundamentalMatrix};

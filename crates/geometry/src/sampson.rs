@@ -3,14 +3,56 @@
 //!
 //! For a match `x1 ↔ x2` (homogeneous, `x = (x, y, 1)`) let
 //! `e = x2ᵀ F x1`, `F x1 = (a, b, ·)` and `Fᵀ x2 = (c, d, ·)`.
+//!
+//! Every distance is invariant to multiplying `F` by any non-zero factor: `F`
+//! is first rescaled by an exact power of two so that its largest entry lies
+//! in `[1, 2)`, which also keeps the products clear of overflow and underflow.
 
 use crate::Correspondences;
 use nalgebra::Matrix3;
 
-/// Smallest denominator used by the distances: a point exactly at an epipole
-/// has a zero gradient; it then gets distance 0 when it satisfies the
-/// constraint and a huge distance otherwise, never NaN.
-const MIN_DENOMINATOR: f64 = f64::MIN_POSITIVE;
+/// `num / den` for the distances, with the limits of a zero gradient: a match
+/// whose epipolar gradient vanishes (both points at the epipoles of a
+/// degenerate `F`) is at distance 0 when it satisfies `x2ᵀ F x1 = 0`
+/// (`e = 0`) and at distance `+∞` (signed: `±∞`) otherwise; never NaN.
+#[inline(always)]
+fn ratio(e: f64, num: f64, den: f64) -> f64 {
+    let q = num / den;
+    if e == 0.0 {
+        0.0
+    } else {
+        q
+    }
+}
+
+/// `2^k` for `k` in the normal exponent range `[-1022, 1023]`, built exactly.
+#[inline(always)]
+fn exp2i(k: i64) -> f64 {
+    f64::from_bits(((k + 1023) as u64) << 52)
+}
+
+/// `f · 2^k` with `k` chosen so that `max |f_ij|` lies in `[1, 2)`: an exact
+/// rescaling (no rounding, except for entries that fall below the normal
+/// range), so the distances below do not depend on the scale of `F`.
+/// A zero or non-finite matrix is returned unchanged.
+#[inline]
+pub(crate) fn rescale_power_of_two(f: &Matrix3<f64>) -> Matrix3<f64> {
+    let max = f.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    if max == 0.0 || !max.is_finite() {
+        return *f;
+    }
+    let mut g = *f;
+    let mut max = max;
+    if max < f64::MIN_POSITIVE {
+        // Subnormal: lift into the normal range first.
+        g *= exp2i(600);
+        max *= exp2i(600);
+    }
+    let exponent = ((max.to_bits() >> 52) & 0x7ff) as i64 - 1023;
+    // Two exact factors, each within the normal range, multiply to 2^-exponent.
+    let k1 = -exponent / 2;
+    g * exp2i(k1) * exp2i(-exponent - k1)
+}
 
 #[inline(always)]
 fn epipolar_terms(f: &Matrix3<f64>, p1: [f64; 2], p2: [f64; 2]) -> (f64, f64, f64) {
@@ -30,7 +72,9 @@ fn epipolar_terms(f: &Matrix3<f64>, p1: [f64; 2], p2: [f64; 2]) -> (f64, f64, f6
 /// Squared Sampson distance (thesis Eq. 23), in px²:
 /// `e² / (a² + b² + c² + d²)`.
 ///
-/// Invariant to scaling and negating `F`.
+/// Invariant to scaling and negating `F`. A match with a zero gradient
+/// (`a = b = c = d = 0`, possible only for a degenerate `F`) is at distance 0
+/// if `e = 0` and `+∞` otherwise.
 ///
 /// ```
 /// use geometry::sampson_distance_squared;
@@ -43,8 +87,8 @@ fn epipolar_terms(f: &Matrix3<f64>, p1: [f64; 2], p2: [f64; 2]) -> (f64, f64, f6
 /// ```
 #[inline]
 pub fn sampson_distance_squared(f: &Matrix3<f64>, p1: [f64; 2], p2: [f64; 2]) -> f64 {
-    let (e, g1, g2) = epipolar_terms(f, p1, p2);
-    e * e / (g1 + g2).max(MIN_DENOMINATOR)
+    let (e, g1, g2) = epipolar_terms(&rescale_power_of_two(f), p1, p2);
+    ratio(e, e * e, g1 + g2)
 }
 
 /// Sampson distance (square root of Eq. 23), in px.
@@ -58,8 +102,8 @@ pub fn sampson_distance(f: &Matrix3<f64>, p1: [f64; 2], p2: [f64; 2]) -> f64 {
 /// the sign of `F`; its absolute value does not.
 #[inline]
 pub fn sampson_distance_signed(f: &Matrix3<f64>, p1: [f64; 2], p2: [f64; 2]) -> f64 {
-    let (e, g1, g2) = epipolar_terms(f, p1, p2);
-    e / (g1 + g2).max(MIN_DENOMINATOR).sqrt()
+    let (e, g1, g2) = epipolar_terms(&rescale_power_of_two(f), p1, p2);
+    ratio(e, e, (g1 + g2).sqrt())
 }
 
 /// Symmetric epipolar distance (thesis Eq. 24), in px²: the sum of the squared
@@ -67,16 +111,17 @@ pub fn sampson_distance_signed(f: &Matrix3<f64>, p1: [f64; 2], p2: [f64; 2]) -> 
 /// `e² (1 / (a² + b²) + 1 / (c² + d²))`.
 #[inline]
 pub fn symmetric_epipolar_distance(f: &Matrix3<f64>, p1: [f64; 2], p2: [f64; 2]) -> f64 {
-    let (e, g1, g2) = epipolar_terms(f, p1, p2);
-    e * e * (1.0 / g1.max(MIN_DENOMINATOR) + 1.0 / g2.max(MIN_DENOMINATOR))
+    let (e, g1, g2) = epipolar_terms(&rescale_power_of_two(f), p1, p2);
+    ratio(e, e * e * (1.0 / g1 + 1.0 / g2), 1.0)
 }
 
 /// Squared Sampson distances (Eq. 23) of every correspondence to one `F`,
-/// written into `out` (`out.len()` must equal `points.len()`; extra slots are
-/// left untouched, missing ones are not written).
+/// written into `out`: `out[i] = e_i² / (a_i² + b_i² + c_i² + d_i²)` in px².
+/// Only the first `min(out.len(), points.len())` slots are written.
 ///
-/// This is the hot loop of the preference matrix: it allocates nothing and
-/// reads the four coordinate columns linearly.
+/// This is the hot loop of the preference matrix (Eq. 38): it allocates
+/// nothing, reads the four coordinate columns linearly and compiles to a
+/// branch-free, vectorised loop.
 ///
 /// ```
 /// use geometry::{sampson_distances_squared, Correspondences};
@@ -89,12 +134,13 @@ pub fn symmetric_epipolar_distance(f: &Matrix3<f64>, p1: [f64; 2], p2: [f64; 2])
 /// assert!((out[1] - 2.0).abs() < 1e-12);
 /// ```
 pub fn sampson_distances_squared(f: &Matrix3<f64>, points: &Correspondences, out: &mut [f64]) {
+    let f = rescale_power_of_two(f);
     let (x1, y1, x2, y2) = points.columns();
     let n = out.len().min(x1.len());
     let (f00, f01, f02) = (f[(0, 0)], f[(0, 1)], f[(0, 2)]);
     let (f10, f11, f12) = (f[(1, 0)], f[(1, 1)], f[(1, 2)]);
     let (f20, f21, f22) = (f[(2, 0)], f[(2, 1)], f[(2, 2)]);
-    let (x1, y1, x2, y2) = (&x1[..n], &y1[..n], &x2[..n], &y2[..n]);
+    let (x1, y1, x2, y2, out) = (&x1[..n], &y1[..n], &x2[..n], &y2[..n], &mut out[..n]);
     for i in 0..n {
         let a = f00 * x1[i] + f01 * y1[i] + f02;
         let b = f10 * x1[i] + f11 * y1[i] + f12;
@@ -102,13 +148,66 @@ pub fn sampson_distances_squared(f: &Matrix3<f64>, points: &Correspondences, out
         let c = f00 * x2[i] + f10 * y2[i] + f20;
         let d = f01 * x2[i] + f11 * y2[i] + f21;
         let e = x2[i] * a + y2[i] * b + c3;
-        out[i] = e * e / (a * a + b * b + c * c + d * d).max(MIN_DENOMINATOR);
+        let g = a * a + b * b + c * c + d * d;
+        // A compare-and-blend: vectorises.
+        out[i] = ratio(e, e * e, g);
+    }
+}
+
+/// Signed Sampson residuals `r_i = e_i / sqrt(a_i² + b_i² + c_i² + d_i²)`
+/// (square root of Eq. 23, with the sign of `e_i`) of every correspondence to
+/// one `F`, written into `out`; `r_i²` is the squared Sampson distance.
+/// These are the residuals whose median and MAD give the IRLS scale (Eq. 34).
+/// Only the first `min(out.len(), points.len())` slots are written.
+///
+/// ```
+/// use geometry::{sampson_residuals_signed, Correspondences};
+/// use nalgebra::Matrix3;
+/// let f = Matrix3::new(0.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0);
+/// let c = Correspondences::new(&[[5.0, 1.0], [5.0, 1.0]], &[[9.0, 3.0], [9.0, -1.0]]).unwrap();
+/// let mut r = vec![0.0; 2];
+/// sampson_residuals_signed(&f, &c, &mut r);
+/// assert!((r[0] + r[1]).abs() < 1e-12 && (r[0].abs() - 2f64.sqrt()).abs() < 1e-12);
+/// ```
+pub fn sampson_residuals_signed(f: &Matrix3<f64>, points: &Correspondences, out: &mut [f64]) {
+    let f = rescale_power_of_two(f);
+    let (x1, y1, x2, y2) = points.columns();
+    let n = out.len().min(x1.len());
+    let (f00, f01, f02) = (f[(0, 0)], f[(0, 1)], f[(0, 2)]);
+    let (f10, f11, f12) = (f[(1, 0)], f[(1, 1)], f[(1, 2)]);
+    let (f20, f21, f22) = (f[(2, 0)], f[(2, 1)], f[(2, 2)]);
+    let (x1, y1, x2, y2, out) = (&x1[..n], &y1[..n], &x2[..n], &y2[..n], &mut out[..n]);
+    for i in 0..n {
+        let a = f00 * x1[i] + f01 * y1[i] + f02;
+        let b = f10 * x1[i] + f11 * y1[i] + f12;
+        let c3 = f20 * x1[i] + f21 * y1[i] + f22;
+        let c = f00 * x2[i] + f10 * y2[i] + f20;
+        let d = f01 * x2[i] + f11 * y2[i] + f21;
+        let e = x2[i] * a + y2[i] * b + c3;
+        let g = a * a + b * b + c * c + d * d;
+        out[i] = ratio(e, e, g.sqrt());
+    }
+}
+
+/// Signed Sampson residuals of the correspondences listed in `indices`
+/// (all in range), `out[k] = r_{indices[k]}`; `out.len() == indices.len()`.
+pub(crate) fn sampson_residuals_signed_at(
+    f: &Matrix3<f64>,
+    points: &Correspondences,
+    indices: &[usize],
+    out: &mut [f64],
+) {
+    let f = rescale_power_of_two(f);
+    for (r, &i) in out.iter_mut().zip(indices) {
+        let (e, g1, g2) = epipolar_terms(&f, points.point1(i), points.point2(i));
+        *r = ratio(e, e, (g1 + g2).sqrt());
     }
 }
 
 /// FROB distance between two fundamental matrices (thesis Eq. 45):
 /// `min(‖Fa/‖Fa‖ − Fb/‖Fb‖‖, ‖Fa/‖Fa‖ + Fb/‖Fb‖‖)` with Frobenius norms, so
-/// that the scale and sign ambiguity of `F` does not count. In `[0, √2]`.
+/// that the scale and sign ambiguity of `F` does not count. In `[0, √2]`;
+/// NaN when either matrix is zero or not finite.
 ///
 /// ```
 /// use geometry::frob_distance;
@@ -117,6 +216,8 @@ pub fn sampson_distances_squared(f: &Matrix3<f64>, points: &Correspondences, out
 /// assert!(frob_distance(&f, &(-3.0 * f)) < 1e-15);
 /// ```
 pub fn frob_distance(fa: &Matrix3<f64>, fb: &Matrix3<f64>) -> f64 {
+    // Exact rescaling first, so that ‖F‖ neither overflows nor underflows.
+    let (fa, fb) = (rescale_power_of_two(fa), rescale_power_of_two(fb));
     let a = fa / fa.norm();
     let b = fb / fb.norm();
     (a - b).norm().min((a + b).norm())

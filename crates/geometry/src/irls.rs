@@ -1,0 +1,645 @@
+//! IRLS-Tukey refinement of a fundamental-matrix hypothesis (step 3 of
+//! Algorithm 1, Section 5.2.1 of the thesis).
+//!
+//! Starting from the minimal sample as the inlier set and an initial `F`,
+//! each outer iteration
+//! 1. takes the signed Sampson residuals `r_i` (square root of Eq. 23, see
+//!    [`crate::sampson_distance_signed`]) of the current inliers under the
+//!    current `F`;
+//! 2. estimates their scale robustly, `σ = 1.4826 · median(|r − median(r)|)`
+//!    (Eq. 34);
+//! 3. weights them with Tukey's biweight (Eq. 33),
+//!    `w_i = (1 − (r_i / (c σ))²)²` if `|r_i| ≤ c σ`, else 0, `c = 4.685`
+//!    (unit weights when σ is 0 or not finite);
+//! 4. refits `F` by the weighted 8-point on the current inliers
+//!    ([`crate::eight_point_weighted`]: minimise `fᵀ Xᵀ W X f`, then rank 2);
+//! 5. takes as new inliers all correspondences whose squared Sampson
+//!    distance is `≤ min(thr², 4 (1.4826 · MAD_all)²)`, MAD_all the MAD of the
+//!    signed residuals of all correspondences under the new `F` (the MAD term
+//!    only when finite and positive);
+//! 6. stops when the inlier set changed by less than `min_change` (1 %):
+//!    `|old Δ new| / |old ∪ new| < min_change`;
+//!
+//! for at most `max_iters` (`irls_iters`, 5) iterations. Fewer than 8 inliers
+//! is an error (the hypothesis is dropped).
+//!
+//! One rule the text leaves open: when the Tukey weights leave fewer than 8
+//! correspondences with a positive weight, or a rank-deficient weighted
+//! system, step 4 uses unit weights on the current inliers instead. This
+//! happens on the first iteration from an exact 8-point fit, whose residuals
+//! are rounding noise: with 8 matches the solution does not depend on the
+//! (positive) weights anyway.
+
+use crate::eight_point::{fit_normalized, MIN_POINTS};
+use crate::sampson::sampson_residuals_signed_at;
+use crate::{sampson_residuals_signed, Correspondences, GeometryError};
+use nalgebra::Matrix3;
+use serde::{Deserialize, Serialize};
+
+/// Consistency constant of the MAD for Gaussian noise, `1 / Φ⁻¹(3/4)`
+/// (Eq. 34): `σ ≈ 1.4826 · MAD`.
+pub const MAD_TO_SIGMA: f64 = 1.4826;
+
+/// Parameters of the IRLS-Tukey refinement. Missing fields take the
+/// defaults of thesis Table 1 when deserialised.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
+pub struct IrlsParams {
+    /// Inlier threshold on the Sampson distance, in px (`thr_px`); a match
+    /// is an inlier when its squared Sampson distance is `≤ thr_px²` (and
+    /// within the MAD bound of step 5). Default 2.5 (Table 1; the reference
+    /// code uses 4.5 on AdelaideRMF).
+    pub thr_px: f64,
+    /// Maximum number of outer iterations (`irls_iters` in the configs,
+    /// which is accepted as an alias). Default 5.
+    #[serde(alias = "irls_iters")]
+    pub max_iters: usize,
+    /// Tukey biweight constant `c` (Eq. 33), in units of σ. Default 4.685
+    /// (95 % efficiency under Gaussian noise).
+    pub tukey_c: f64,
+    /// Convergence threshold on `|old Δ new| / |old ∪ new|` of the inlier
+    /// sets. Default 0.01 (1 %).
+    pub min_change: f64,
+}
+
+impl Default for IrlsParams {
+    fn default() -> Self {
+        Self {
+            thr_px: 2.5,
+            max_iters: 5,
+            tukey_c: 4.685,
+            min_change: 0.01,
+        }
+    }
+}
+
+impl IrlsParams {
+    /// Checks the ranges: `thr_px` finite and `> 0`, `max_iters ≥ 1`,
+    /// `tukey_c` finite and `> 0`, `min_change` finite and `≥ 0`.
+    pub fn validate(&self) -> Result<(), GeometryError> {
+        let invalid = |name, value, requirement| {
+            Err(GeometryError::InvalidParameter {
+                name,
+                value,
+                requirement,
+            })
+        };
+        if !(self.thr_px.is_finite() && self.thr_px > 0.0) {
+            return invalid("thr_px", self.thr_px, "must be finite and > 0");
+        }
+        if self.max_iters == 0 {
+            return invalid("max_iters", 0.0, "must be >= 1");
+        }
+        if !(self.tukey_c.is_finite() && self.tukey_c > 0.0) {
+            return invalid("tukey_c", self.tukey_c, "must be finite and > 0");
+        }
+        if !(self.min_change.is_finite() && self.min_change >= 0.0) {
+            return invalid("min_change", self.min_change, "must be finite and >= 0");
+        }
+        Ok(())
+    }
+}
+
+/// A refined hypothesis.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RefinedModel {
+    /// The refined fundamental matrix: rank 2, unit Frobenius norm.
+    pub f: Matrix3<f64>,
+    /// Inlier mask over all correspondences (`inliers[i]` is true when match
+    /// `i` is an inlier of `f` by step 5), length N.
+    pub inliers: Vec<bool>,
+    /// Number of outer iterations run (1 ..= `max_iters`).
+    pub iterations: usize,
+}
+
+impl RefinedModel {
+    /// Number of inliers.
+    pub fn inlier_count(&self) -> usize {
+        self.inliers.iter().filter(|&&b| b).count()
+    }
+
+    /// Indices of the inliers, increasing.
+    pub fn inlier_indices(&self) -> Vec<usize> {
+        (0..self.inliers.len())
+            .filter(|&i| self.inliers[i])
+            .collect()
+    }
+}
+
+/// The result of [`IrlsWorkspace::run`]; the inlier set itself stays in the
+/// workspace ([`IrlsWorkspace::inlier_mask`], [`IrlsWorkspace::inlier_indices`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct IrlsSummary {
+    /// The refined fundamental matrix: rank 2, unit Frobenius norm.
+    pub f: Matrix3<f64>,
+    /// Number of outer iterations run (1 ..= `max_iters`).
+    pub iterations: usize,
+    /// Number of inliers of `f`.
+    pub inlier_count: usize,
+}
+
+/// Scratch buffers for IRLS-Tukey refinement, reused across calls so that a
+/// refinement allocates nothing once the buffers have grown to N.
+///
+/// ```
+/// use geometry::{Correspondences, IrlsParams, IrlsWorkspace};
+/// use nalgebra::{Matrix3, Vector3};
+/// // 30 matches of a rigid scene (rotation about y, translation) with about
+/// // ±0.3 px of noise, and 5 gross outliers.
+/// let (c, s) = (0.1f64.cos(), 0.1f64.sin());
+/// let r = Matrix3::new(c, 0.0, s, 0.0, 1.0, 0.0, -s, 0.0, c);
+/// let t = Vector3::new(1.0, 0.2, 0.1);
+/// let (mut p1, mut p2) = (vec![], vec![]);
+/// for i in 0..30 {
+///     let x = Vector3::new((i % 6) as f64 - 2.5, (i / 6) as f64 - 2.0, 5.0 + (i * 7 % 5) as f64);
+///     let y = r * x + t;
+///     let noise = 0.3 * (i as f64 * 2.3).sin();
+///     p1.push([800.0 * x.x / x.z, 800.0 * x.y / x.z]);
+///     p2.push([800.0 * y.x / y.z + noise, 800.0 * y.y / y.z - noise]);
+/// }
+/// for i in 0..5 {
+///     p1.push([40.0 * i as f64, -100.0]);
+///     p2.push([-90.0, 33.0 * i as f64]);
+/// }
+/// let points = Correspondences::new(&p1, &p2).unwrap();
+/// let mut workspace = IrlsWorkspace::new();
+/// let sample = [0, 4, 9, 13, 17, 20, 26, 29];
+/// let refined = workspace.run(&points, &sample, None, &IrlsParams::default()).unwrap();
+/// // The outliers are rejected; the inliers are those within the scale bound.
+/// assert!(workspace.inlier_indices().iter().all(|&i| i < 30));
+/// assert!(refined.inlier_count >= 20);
+/// ```
+#[derive(Debug, Clone, Default)]
+pub struct IrlsWorkspace {
+    /// Inlier mask over all correspondences.
+    mask: Vec<bool>,
+    /// Indices of the current inliers, increasing.
+    inliers: Vec<usize>,
+    /// Signed Sampson residuals of all correspondences under the current F.
+    residuals_all: Vec<f64>,
+    /// Signed residuals of the current inliers.
+    residuals_in: Vec<f64>,
+    /// Tukey weights of the current inliers.
+    weights: Vec<f64>,
+    /// Scratch for the medians: order-preserving integer keys.
+    keys: Vec<u64>,
+}
+
+impl IrlsWorkspace {
+    /// An empty workspace; buffers grow on first use.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Inlier mask of the last successful [`run`](Self::run) (length N).
+    pub fn inlier_mask(&self) -> &[bool] {
+        &self.mask
+    }
+
+    /// Increasing inlier indices of the last successful [`run`](Self::run).
+    pub fn inlier_indices(&self) -> &[usize] {
+        &self.inliers
+    }
+
+    /// IRLS-Tukey refinement (steps 3a–3f, Eqs. 23, 33, 34) of the hypothesis
+    /// fitted to `sample` (indices into `points`, at least 8), starting from
+    /// `initial` or, when `None`, from the Hartley-normalised 8-point of the
+    /// sample. See the [module documentation](self) for the iteration.
+    ///
+    /// Errors: invalid `params` ([`GeometryError::InvalidParameter`]); fewer
+    /// than 8 sample indices ([`GeometryError::TooFewPoints`]); an index out
+    /// of range; a non-finite or zero `initial`; a degenerate sample or
+    /// inlier set ([`GeometryError::Degenerate`],
+    /// [`GeometryError::TooFewWeightedPoints`]); fewer than 8 inliers after an
+    /// iteration ([`GeometryError::TooFewInliers`]).
+    pub fn run(
+        &mut self,
+        points: &Correspondences,
+        sample: &[usize],
+        initial: Option<&Matrix3<f64>>,
+        params: &IrlsParams,
+    ) -> Result<IrlsSummary, GeometryError> {
+        params.validate()?;
+        let n = points.len();
+        if sample.len() < MIN_POINTS {
+            return Err(GeometryError::TooFewPoints {
+                got: sample.len(),
+                needed: MIN_POINTS,
+            });
+        }
+        if let Some(&index) = sample.iter().find(|&&i| i >= n) {
+            return Err(GeometryError::IndexOutOfRange { index, len: n });
+        }
+        let mut f = match initial {
+            Some(f) => checked_initial(f)?,
+            None => fit_normalized(points, sample.iter().map(|&i| (i, 1.0)))?,
+        };
+
+        // Start: the inlier set is the sample (duplicates collapse).
+        self.mask.clear();
+        self.mask.resize(n, false);
+        for &i in sample {
+            self.mask[i] = true;
+        }
+        self.collect_inliers();
+        self.residuals_in.resize(self.inliers.len(), 0.0);
+        sampson_residuals_signed_at(&f, points, &self.inliers, &mut self.residuals_in);
+        self.residuals_all.resize(n, 0.0);
+
+        let thr2 = params.thr_px * params.thr_px;
+        let mut iterations = 0;
+        for iteration in 1..=params.max_iters {
+            iterations = iteration;
+            // 3b-c: robust scale of the inlier residuals and Tukey weights.
+            let sigma = MAD_TO_SIGMA * mad_by_keys(&self.residuals_in, &mut self.keys);
+            self.weights.clear();
+            if sigma.is_finite() && sigma > 0.0 {
+                let cs = params.tukey_c * sigma;
+                self.weights
+                    .extend(self.residuals_in.iter().map(|&r| tukey_weight(r / cs)));
+            } else {
+                self.weights.resize(self.inliers.len(), 1.0);
+            }
+
+            // 3d: weighted 8-point on the current inliers.
+            let weighted = fit_normalized(
+                points,
+                self.inliers
+                    .iter()
+                    .copied()
+                    .zip(self.weights.iter().copied()),
+            );
+            f = match weighted {
+                Ok(f) => f,
+                Err(GeometryError::TooFewWeightedPoints { .. } | GeometryError::Degenerate(_)) => {
+                    fit_normalized(points, self.inliers.iter().map(|&i| (i, 1.0)))?
+                }
+                Err(e) => return Err(e),
+            };
+            if let Some(k) = f.iter().position(|v| !v.is_finite()) {
+                return Err(GeometryError::NonFiniteMatrix {
+                    row: k % 3,
+                    col: k / 3,
+                });
+            }
+
+            // 3e: new inlier set from the residuals of all correspondences.
+            sampson_residuals_signed(&f, points, &mut self.residuals_all);
+            // min(thr², 4σ²) is thr² whenever MAD ≥ thr / (2 · 1.4826); the
+            // exact MAD is only needed below that (the margin covers rounding).
+            let mad_limit = params.thr_px / (2.0 * MAD_TO_SIGMA) * (1.0 + 1e-12);
+            let bound = match mad_below(&self.residuals_all, &mut self.keys, mad_limit) {
+                Some(mad) => {
+                    let sigma_all = MAD_TO_SIGMA * mad;
+                    if sigma_all.is_finite() && sigma_all > 0.0 {
+                        thr2.min(4.0 * sigma_all * sigma_all)
+                    } else {
+                        thr2
+                    }
+                }
+                None => thr2,
+            };
+            let (mut changed, mut union) = (0usize, 0usize);
+            for (inlier, &r) in self.mask.iter_mut().zip(&self.residuals_all) {
+                let new = r * r <= bound;
+                changed += usize::from(new != *inlier);
+                union += usize::from(new || *inlier);
+                *inlier = new;
+            }
+            self.collect_inliers();
+            if self.inliers.len() < MIN_POINTS {
+                return Err(GeometryError::TooFewInliers {
+                    got: self.inliers.len(),
+                    needed: MIN_POINTS,
+                    iteration,
+                });
+            }
+
+            // 3f: converged when the set changed by less than min_change.
+            if (changed as f64) < params.min_change * union as f64 {
+                break;
+            }
+            // 3a of the next iteration: residuals of the new inliers.
+            self.residuals_in.clear();
+            let all = &self.residuals_all;
+            self.residuals_in
+                .extend(self.inliers.iter().map(|&i| all[i]));
+        }
+        Ok(IrlsSummary {
+            f,
+            iterations,
+            inlier_count: self.inliers.len(),
+        })
+    }
+
+    /// [`run`](Self::run), returning the inlier mask as an owned
+    /// [`RefinedModel`].
+    pub fn refine(
+        &mut self,
+        points: &Correspondences,
+        sample: &[usize],
+        initial: Option<&Matrix3<f64>>,
+        params: &IrlsParams,
+    ) -> Result<RefinedModel, GeometryError> {
+        let summary = self.run(points, sample, initial, params)?;
+        Ok(RefinedModel {
+            f: summary.f,
+            inliers: self.mask.clone(),
+            iterations: summary.iterations,
+        })
+    }
+
+    fn collect_inliers(&mut self) {
+        self.inliers.clear();
+        let mask = &self.mask;
+        self.inliers.extend((0..mask.len()).filter(|&i| mask[i]));
+    }
+}
+
+/// IRLS-Tukey refinement (step 3 of Algorithm 1; Eqs. 23, 33, 34) with a
+/// fresh [`IrlsWorkspace`]; see [`IrlsWorkspace::run`] for the arguments and
+/// errors. Calls in a loop should reuse one workspace instead.
+///
+/// ```
+/// use geometry::{refine_irls_tukey, Correspondences, IrlsParams};
+/// use nalgebra::{Matrix3, Vector3};
+/// let (c, s) = (0.2f64.cos(), 0.2f64.sin());
+/// let r = Matrix3::new(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0);
+/// let t = Vector3::new(0.5, -1.0, 0.2);
+/// let (mut p1, mut p2) = (vec![], vec![]);
+/// for i in 0..40 {
+///     let x = Vector3::new((i % 8) as f64 - 3.5, (i / 8) as f64 - 2.0, 6.0 + (i * 5 % 7) as f64);
+///     let y = r * x + t;
+///     let noise = 0.4 * (i as f64 * 1.7).cos();
+///     p1.push([700.0 * x.x / x.z + noise, 700.0 * x.y / x.z]);
+///     p2.push([700.0 * y.x / y.z, 700.0 * y.y / y.z + noise]);
+/// }
+/// p2[3] = [250.0, 250.0]; // one gross outlier
+/// let points = Correspondences::new(&p1, &p2).unwrap();
+/// let sample = [0, 5, 11, 16, 22, 27, 33, 38];
+/// let model = refine_irls_tukey(&points, &sample, None, &IrlsParams::default()).unwrap();
+/// assert!(!model.inliers[3]);
+/// assert!(model.inlier_count() >= 30 && model.iterations <= 5);
+/// ```
+pub fn refine_irls_tukey(
+    points: &Correspondences,
+    sample: &[usize],
+    initial: Option<&Matrix3<f64>>,
+    params: &IrlsParams,
+) -> Result<RefinedModel, GeometryError> {
+    IrlsWorkspace::new().refine(points, sample, initial, params)
+}
+
+/// Tukey's biweight (Eq. 33) of the standardised residual `u = r / (c σ)`:
+/// `(1 − u²)²` for `|u| ≤ 1`, else 0.
+#[inline]
+pub fn tukey_weight(u: f64) -> f64 {
+    if u.abs() <= 1.0 {
+        let v = 1.0 - u * u;
+        v * v
+    } else {
+        0.0
+    }
+}
+
+/// Median absolute deviation `median(|v − median(v)|)` (the MAD of Eq. 34,
+/// without the 1.4826 factor). The median of an even count is the mean of
+/// the two middle values. NaN for an empty slice. `scratch` is overwritten.
+///
+/// ```
+/// let mut scratch = Vec::new();
+/// let mad = geometry::median_absolute_deviation(&[1.0, 2.0, 3.0, 4.0, 100.0], &mut scratch);
+/// assert_eq!(mad, 1.0);
+/// ```
+pub fn median_absolute_deviation(values: &[f64], scratch: &mut Vec<f64>) -> f64 {
+    scratch.clear();
+    scratch.extend_from_slice(values);
+    let center = median_in_place(scratch);
+    for v in scratch.iter_mut() {
+        *v = (*v - center).abs();
+    }
+    median_in_place(scratch)
+}
+
+/// Median of `values` (reordered in place): the middle value, or the mean of
+/// the two middle values for an even count; NaN when empty.
+pub fn median_in_place(values: &mut [f64]) -> f64 {
+    let n = values.len();
+    if n == 0 {
+        return f64::NAN;
+    }
+    let (lower, &mut middle, _) = values.select_nth_unstable_by(n / 2, f64::total_cmp);
+    if n % 2 == 1 {
+        middle
+    } else {
+        let below = lower.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        0.5 * (below + middle)
+    }
+}
+
+/// Order-preserving map from `f64` (IEEE total order, as `f64::total_cmp`)
+/// to `u64`, so that medians are selected with integer comparisons.
+#[inline(always)]
+fn order_key(v: f64) -> u64 {
+    let bits = v.to_bits();
+    if bits >> 63 == 1 {
+        !bits
+    } else {
+        bits | (1 << 63)
+    }
+}
+
+/// Inverse of [`order_key`].
+#[inline(always)]
+fn from_order_key(key: u64) -> f64 {
+    f64::from_bits(if key >> 63 == 1 {
+        key & !(1 << 63)
+    } else {
+        !key
+    })
+}
+
+/// Median of the values behind `keys` (reordered), with the conventions of
+/// [`median_in_place`].
+fn median_of_keys(keys: &mut [u64]) -> f64 {
+    let n = keys.len();
+    if n == 0 {
+        return f64::NAN;
+    }
+    let (lower, middle, _) = keys.select_nth_unstable(n / 2);
+    let middle = from_order_key(*middle);
+    if n % 2 == 1 {
+        middle
+    } else {
+        let below = lower.iter().copied().max().map_or(f64::NAN, from_order_key);
+        0.5 * (below + middle)
+    }
+}
+
+/// [`median_absolute_deviation`] with integer-key selection and a
+/// reusable key buffer.
+fn mad_by_keys(values: &[f64], keys: &mut Vec<u64>) -> f64 {
+    keys.clear();
+    keys.extend(values.iter().map(|&v| order_key(v)));
+    let center = median_of_keys(keys);
+    keys.clear();
+    keys.extend(values.iter().map(|&v| order_key((v - center).abs())));
+    median_of_keys(keys)
+}
+
+/// The MAD of `values` when it is below `limit`, `None` when it is certainly
+/// `>= limit`: after the median `m`, counting the deviations `|v − m| <
+/// limit` decides the case without the second selection when fewer than
+/// half of them are below the limit.
+fn mad_below(values: &[f64], keys: &mut Vec<u64>, limit: f64) -> Option<f64> {
+    let n = values.len();
+    keys.clear();
+    keys.extend(values.iter().map(|&v| order_key(v)));
+    let center = median_of_keys(keys);
+    let below = values
+        .iter()
+        .map(|&v| usize::from((v - center).abs() < limit))
+        .sum::<usize>();
+    // The lower middle deviation (rank (n − 1) / 2) is >= limit, so the
+    // median of the deviations (of both middles when n is even) is too.
+    if n > 0 && below <= (n - 1) / 2 {
+        return None;
+    }
+    keys.clear();
+    keys.extend(values.iter().map(|&v| order_key((v - center).abs())));
+    let mad = median_of_keys(keys);
+    if mad >= limit {
+        None
+    } else {
+        Some(mad)
+    }
+}
+
+/// Checks a caller-supplied starting matrix: finite and non-zero.
+fn checked_initial(f: &Matrix3<f64>) -> Result<Matrix3<f64>, GeometryError> {
+    for row in 0..3 {
+        for col in 0..3 {
+            if !f[(row, col)].is_finite() {
+                return Err(GeometryError::NonFiniteMatrix { row, col });
+            }
+        }
+    }
+    if f.iter().all(|&v| v == 0.0) {
+        return Err(GeometryError::ZeroMatrix);
+    }
+    Ok(*f)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn median_matches_sorting() {
+        let data = [5.0, -1.0, 3.5, 2.0, 8.0, 0.0, 3.5, -7.25];
+        for len in 1..=data.len() {
+            let mut sorted = data[..len].to_vec();
+            sorted.sort_by(f64::total_cmp);
+            let expected = if len % 2 == 1 {
+                sorted[len / 2]
+            } else {
+                0.5 * (sorted[len / 2 - 1] + sorted[len / 2])
+            };
+            let mut v = data[..len].to_vec();
+            assert_eq!(median_in_place(&mut v), expected, "len {len}");
+        }
+        assert!(median_in_place(&mut []).is_nan());
+    }
+
+    #[test]
+    fn key_medians_equal_the_float_medians() {
+        let mut state = 12345u64;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((state >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 20.0
+        };
+        let (mut keys, mut scratch) = (Vec::new(), Vec::new());
+        for n in 1..60 {
+            let mut values: Vec<f64> = (0..n).map(|_| next()).collect();
+            if n % 7 == 0 {
+                values[0] = -0.0;
+                values[n / 2] = f64::INFINITY;
+            }
+            for v in &values {
+                assert_eq!(from_order_key(order_key(*v)).to_bits(), v.to_bits());
+            }
+            let expected = median_absolute_deviation(&values, &mut scratch);
+            assert_eq!(mad_by_keys(&values, &mut keys), expected, "n {n}");
+            for limit in [0.0, expected * 0.999, expected, expected * 1.001, 100.0] {
+                match mad_below(&values, &mut keys, limit) {
+                    Some(mad) => assert!(mad == expected && mad < limit, "n {n}"),
+                    None => assert!(expected >= limit, "n {n}, limit {limit}"),
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn mad_of_a_known_sample() {
+        let mut scratch = Vec::new();
+        // median 2.5; deviations 1.5, 0.5, 0.5, 1.5 -> MAD 1.0
+        assert_eq!(
+            median_absolute_deviation(&[1.0, 2.0, 3.0, 4.0], &mut scratch),
+            1.0
+        );
+    }
+
+    #[test]
+    fn tukey_weight_shape() {
+        assert_eq!(tukey_weight(0.0), 1.0);
+        assert_eq!(tukey_weight(1.0), 0.0);
+        assert_eq!(tukey_weight(-1.5), 0.0);
+        assert!((tukey_weight(0.5) - 0.5625).abs() < 1e-15);
+        assert_eq!(tukey_weight(0.3), tukey_weight(-0.3));
+    }
+
+    #[test]
+    fn params_validation_names_the_field() {
+        let bad = IrlsParams {
+            thr_px: -1.0,
+            ..IrlsParams::default()
+        };
+        assert!(matches!(
+            bad.validate(),
+            Err(GeometryError::InvalidParameter { name: "thr_px", .. })
+        ));
+        let bad = IrlsParams {
+            max_iters: 0,
+            ..IrlsParams::default()
+        };
+        assert!(matches!(
+            bad.validate(),
+            Err(GeometryError::InvalidParameter {
+                name: "max_iters",
+                ..
+            })
+        ));
+        let bad = IrlsParams {
+            tukey_c: f64::NAN,
+            ..IrlsParams::default()
+        };
+        assert!(bad.validate().is_err());
+        assert!(IrlsParams::default().validate().is_ok());
+    }
+
+    #[test]
+    fn checked_initial_rejects_nan_and_zero() {
+        let mut f = Matrix3::identity();
+        f[(2, 1)] = f64::NAN;
+        assert_eq!(
+            checked_initial(&f),
+            Err(GeometryError::NonFiniteMatrix { row: 2, col: 1 })
+        );
+        assert_eq!(
+            checked_initial(&Matrix3::zeros()),
+            Err(GeometryError::ZeroMatrix)
+        );
+    }
+}
