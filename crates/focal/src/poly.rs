@@ -1,0 +1,872 @@
+//! Small polynomial toolkit for the robust focal solver: bivariate
+//! polynomials of total degree at most 4, the univariate Aberth–Ehrlich root
+//! finder, and the computation of all real solutions of two bivariate
+//! quartics by hidden-variable elimination (Bezout resultant).
+//!
+//! Everything here works on fixed-size arrays: no allocation per call.
+
+use nalgebra::Complex;
+
+type C64 = Complex<f64>;
+
+/// A bivariate polynomial in (t1, t2) of total degree at most 1:
+/// `c[0] + c[1] t1 + c[2] t2`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Lin2(pub [f64; 3]);
+
+/// A bivariate polynomial of total degree at most 2; `c[i][j]` multiplies
+/// `t1^i t2^j` (entries with `i + j > 2` stay zero).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Quad2(pub [[f64; 3]; 3]);
+
+/// A bivariate polynomial of total degree at most 4; `c[i][j]` multiplies
+/// `t1^i t2^j` (entries with `i + j > 4` stay zero).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Quartic2(pub [[f64; 5]; 5]);
+
+impl Lin2 {
+    /// The product of two linear polynomials.
+    pub(crate) fn mul(&self, other: &Lin2) -> Quad2 {
+        let a = &self.0;
+        let b = &other.0;
+        let mut q = [[0.0; 3]; 3];
+        q[0][0] = a[0] * b[0];
+        q[1][0] = a[1] * b[0] + a[0] * b[1];
+        q[0][1] = a[2] * b[0] + a[0] * b[2];
+        q[2][0] = a[1] * b[1];
+        q[1][1] = a[1] * b[2] + a[2] * b[1];
+        q[0][2] = a[2] * b[2];
+        Quad2(q)
+    }
+}
+
+impl Quad2 {
+    /// `alpha * self + beta * other`.
+    pub(crate) fn combine(&self, alpha: f64, other: &Quad2, beta: f64) -> Quad2 {
+        let mut q = [[0.0; 3]; 3];
+        for (i, row) in q.iter_mut().enumerate() {
+            for (j, c) in row.iter_mut().enumerate() {
+                *c = alpha * self.0[i][j] + beta * other.0[i][j];
+            }
+        }
+        Quad2(q)
+    }
+
+    /// The product of two quadratics.
+    pub(crate) fn mul(&self, other: &Quad2) -> Quartic2 {
+        let mut r = [[0.0; 5]; 5];
+        for i in 0..3 {
+            for j in 0..3 - i {
+                let a = self.0[i][j];
+                if a == 0.0 {
+                    continue;
+                }
+                for k in 0..3 {
+                    for l in 0..3 - k {
+                        r[i + k][j + l] += a * other.0[k][l];
+                    }
+                }
+            }
+        }
+        Quartic2(r)
+    }
+}
+
+impl Quartic2 {
+    /// `alpha * self + beta * other`.
+    pub(crate) fn combine(&self, alpha: f64, other: &Quartic2, beta: f64) -> Quartic2 {
+        let mut q = [[0.0; 5]; 5];
+        for (i, row) in q.iter_mut().enumerate() {
+            for (j, c) in row.iter_mut().enumerate() {
+                *c = alpha * self.0[i][j] + beta * other.0[i][j];
+            }
+        }
+        Quartic2(q)
+    }
+
+    /// The largest absolute coefficient.
+    pub(crate) fn max_abs_coef(&self) -> f64 {
+        self.0
+            .iter()
+            .flat_map(|row| row.iter())
+            .fold(0.0_f64, |m, c| m.max(c.abs()))
+    }
+
+    /// The polynomial divided by `s`.
+    pub(crate) fn scaled(&self, s: f64) -> Quartic2 {
+        self.combine(1.0 / s, self, 0.0)
+    }
+
+    /// Value, partial derivatives (d/dt1, d/dt2) and the magnitude bound
+    /// `sum |c_ij| |t1|^i |t2|^j` at (t1, t2).
+    pub(crate) fn eval_with_grad(&self, t1: f64, t2: f64) -> (f64, f64, f64, f64) {
+        let mut p1 = [1.0; 5];
+        let mut p2 = [1.0; 5];
+        for k in 1..5 {
+            p1[k] = p1[k - 1] * t1;
+            p2[k] = p2[k - 1] * t2;
+        }
+        let (mut v, mut d1, mut d2, mut mag) = (0.0, 0.0, 0.0, 0.0);
+        for i in 0..5 {
+            for j in 0..5 - i {
+                let c = self.0[i][j];
+                if c == 0.0 {
+                    continue;
+                }
+                let term = c * p1[i] * p2[j];
+                v += term;
+                mag += term.abs();
+                if i > 0 {
+                    d1 += c * (i as f64) * p1[i - 1] * p2[j];
+                }
+                if j > 0 {
+                    d2 += c * (j as f64) * p1[i] * p2[j - 1];
+                }
+            }
+        }
+        (v, d1, d2, mag)
+    }
+
+    /// Value at (t1, t2).
+    #[cfg(test)]
+    pub(crate) fn eval(&self, t1: f64, t2: f64) -> f64 {
+        self.eval_with_grad(t1, t2).0
+    }
+
+    /// Coefficients (ascending powers of t1) of the polynomial in t1 obtained
+    /// by fixing t2 = z (complex).
+    fn coefs_in_t1_complex(&self, z: C64) -> [C64; 5] {
+        let mut out = [C64::new(0.0, 0.0); 5];
+        for (i, o) in out.iter_mut().enumerate() {
+            // Horner in t2 over the coefficients of t1^i.
+            let mut acc = C64::new(0.0, 0.0);
+            for j in (0..5 - i).rev() {
+                acc = acc * z + self.0[i][j];
+            }
+            *o = acc;
+        }
+        out
+    }
+
+    /// Coefficients (ascending powers of t1) with t2 fixed to a real value.
+    fn coefs_in_t1(&self, t2: f64) -> [f64; 5] {
+        let mut out = [0.0; 5];
+        for (i, o) in out.iter_mut().enumerate() {
+            let mut acc = 0.0;
+            for j in (0..5 - i).rev() {
+                acc = acc * t2 + self.0[i][j];
+            }
+            *o = acc;
+        }
+        out
+    }
+}
+
+/// Determinant of the 4x4 Bezout matrix of two univariate quartics (complex
+/// coefficients, ascending powers): it equals, up to sign, their resultant.
+///
+/// `(P(x)Q(y) - P(y)Q(x)) / (x - y) = sum_{i,j} B_ij x^i y^j` with
+/// `B_ij = sum_{q = max(0, i+j+1-4)}^{min(i,j)} (a_{i+j+1-q} b_q - a_q b_{i+j+1-q})`.
+fn bezout_det(a: &[C64; 5], b: &[C64; 5]) -> C64 {
+    let n: usize = 4;
+    // m_pq = a_p b_q - a_q b_p for p > q.
+    let mut mpq = [[C64::new(0.0, 0.0); 5]; 5];
+    for p in 1..5 {
+        for q in 0..p {
+            mpq[p][q] = a[p] * b[q] - a[q] * b[p];
+        }
+    }
+    let mut m = [[C64::new(0.0, 0.0); 4]; 4];
+    for i in 0..4usize {
+        for j in i..4usize {
+            let lo = (i + j + 1).saturating_sub(n);
+            let mut s = C64::new(0.0, 0.0);
+            for q in lo..=i {
+                s += mpq[i + j + 1 - q][q];
+            }
+            // The Bezout matrix is symmetric.
+            m[i][j] = s;
+            m[j][i] = s;
+        }
+    }
+    det4_complex(m)
+}
+
+/// Determinant of a complex 4x4 matrix by Gaussian elimination with partial
+/// pivoting.
+fn det4_complex(mut m: [[C64; 4]; 4]) -> C64 {
+    let mut det = C64::new(1.0, 0.0);
+    for col in 0..4 {
+        let mut piv = col;
+        let mut best = m[col][col].norm_sqr();
+        for (r, row) in m.iter().enumerate().skip(col + 1) {
+            let v = row[col].norm_sqr();
+            if v > best {
+                best = v;
+                piv = r;
+            }
+        }
+        if best == 0.0 {
+            return C64::new(0.0, 0.0);
+        }
+        if piv != col {
+            m.swap(piv, col);
+            det = -det;
+        }
+        let d = m[col][col];
+        det *= d;
+        let inv = C64::new(1.0, 0.0) / d;
+        for r in col + 1..4 {
+            let factor = m[r][col] * inv;
+            if factor.norm_sqr() == 0.0 {
+                continue;
+            }
+            let pivot_row = m[col];
+            for (entry, v) in m[r].iter_mut().zip(pivot_row.iter()).skip(col) {
+                *entry -= factor * v;
+            }
+        }
+    }
+    det
+}
+
+/// Number of interpolation nodes on the circle (a power of two > 2 * 16).
+const NODES: usize = 32;
+/// Degree bound of the resultant of two bivariate quartics (Bezout: 4 * 4).
+const RES_DEGREE: usize = 16;
+
+/// Coefficients (ascending powers of t2, length 17) of `det Bezout(P, Q)(t2)`,
+/// the resultant of P and Q with respect to t1, obtained by evaluating it at
+/// the 32nd roots of unity and applying the inverse DFT (exact for a
+/// polynomial of degree <= 16; the real polynomial's values at conjugate
+/// nodes are conjugate, so only 17 evaluations are needed).
+fn resultant_in_t2(p: &Quartic2, q: &Quartic2) -> [f64; RES_DEGREE + 1] {
+    let mut omega = [C64::new(0.0, 0.0); NODES];
+    for (k, w) in omega.iter_mut().enumerate() {
+        *w = unit_root(k);
+    }
+    let mut values = [C64::new(0.0, 0.0); NODES];
+    for k in 0..=NODES / 2 {
+        let z = omega[k];
+        let v = bezout_det(&p.coefs_in_t1_complex(z), &q.coefs_in_t1_complex(z));
+        values[k] = v;
+        if k != 0 && k != NODES / 2 {
+            values[NODES - k] = v.conj();
+        }
+    }
+    let mut coefs = [0.0; RES_DEGREE + 1];
+    for (j, c) in coefs.iter_mut().enumerate() {
+        // Real part of (1/N) sum_k values[k] omega^{-jk}.
+        let mut acc = 0.0;
+        for (k, v) in values.iter().enumerate() {
+            let w = omega[(j * k) % NODES];
+            acc += v.re * w.re + v.im * w.im;
+        }
+        *c = acc / NODES as f64;
+    }
+    coefs
+}
+
+/// `cos(2 pi k / 32)` for k = 0..=8.
+const COS_32: [f64; 9] = [
+    1.0,
+    0.9807852804032304,
+    0.9238795325112867,
+    0.8314696123025452,
+    std::f64::consts::FRAC_1_SQRT_2,
+    0.5555702330196023,
+    0.38268343236508984,
+    0.19509032201612833,
+    0.0,
+];
+
+/// `exp(2 pi i k / 32)` from the first-octant table by symmetry.
+fn unit_root(k: usize) -> C64 {
+    let cos = |k: usize| -> f64 {
+        let m = k % NODES;
+        match m {
+            0..=8 => COS_32[m],
+            9..=16 => -COS_32[16 - m],
+            17..=24 => -COS_32[m - 16],
+            _ => COS_32[32 - m],
+        }
+    };
+    C64::new(cos(k), cos(k + NODES - 8))
+}
+
+/// Maximum degree handled by [`aberth_roots`].
+pub(crate) const MAX_DEGREE: usize = RES_DEGREE;
+
+/// All complex roots of the real polynomial `sum_k coefs[k] z^k` by the
+/// Aberth–Ehrlich simultaneous iteration. Leading coefficients that are
+/// exactly zero are dropped; roots at zero are deflated exactly. Writes the
+/// roots into `out` and returns their number (the degree).
+///
+/// The iteration starts from `warm` when it holds as many distinct finite
+/// approximations as the degree (e.g. the roots of a nearby polynomial),
+/// else from Bini's Newton-polygon approximations; a warm start that does
+/// not converge is retried from the Newton polygon. Roots that miss the
+/// backward-error test after the iteration budget are still returned (as
+/// approximations); callers polish and verify them.
+pub(crate) fn aberth_roots(
+    coefs: &[f64],
+    out: &mut [C64; MAX_DEGREE],
+    warm: Option<&[C64]>,
+) -> usize {
+    // Trim exact zero leading coefficients.
+    let mut n = coefs.len();
+    while n > 0 && coefs[n - 1] == 0.0 {
+        n -= 1;
+    }
+    if n <= 1 {
+        return 0;
+    }
+    let mut start = 0;
+    let mut count = 0;
+    // Exact roots at zero.
+    while start < n - 1 && coefs[start] == 0.0 {
+        out[count] = C64::new(0.0, 0.0);
+        count += 1;
+        start += 1;
+    }
+    let c = &coefs[start..n];
+    let deg = c.len() - 1;
+    if deg == 0 {
+        return count;
+    }
+    debug_assert!(count + deg <= MAX_DEGREE);
+    let roots = &mut out[count..count + deg];
+    let usable_warm = warm.filter(|w| {
+        w.len() == deg
+            && w.iter().all(|z| z.re.is_finite() && z.im.is_finite())
+            && (0..deg).all(|i| (i + 1..deg).all(|j| w[i] != w[j]))
+    });
+    if let Some(w) = usable_warm {
+        roots.copy_from_slice(w);
+        if aberth_iterate(c, roots, 30) {
+            return count + deg;
+        }
+    }
+    init_newton_polygon(c, roots);
+    aberth_iterate(c, roots, 100);
+    count + deg
+}
+
+/// Aberth–Ehrlich iterations (Gauss–Seidel updates) on `roots` for the
+/// polynomial with ascending coefficients `c` (nonzero ends); returns true
+/// when every approximation met the backward-error test
+/// `|p(z)| <= 4 eps sum |c_k| |z|^k`.
+fn aberth_iterate(c: &[f64], roots: &mut [C64], max_iter: usize) -> bool {
+    let deg = c.len() - 1;
+    let mut abs_c = [0.0; MAX_DEGREE + 1];
+    for (k, v) in c.iter().enumerate() {
+        abs_c[k] = v.abs();
+    }
+    let mut converged = [false; MAX_DEGREE];
+    let tol = 4.0 * f64::EPSILON;
+    for _ in 0..max_iter {
+        let mut all = true;
+        for i in 0..deg {
+            if converged[i] {
+                continue;
+            }
+            let z = roots[i];
+            // Horner for p, p' and the bound sum |c_k| |z|^k.
+            let az = z.norm_sqr().sqrt();
+            let (mut pr, mut pi) = (c[deg], 0.0);
+            let (mut dr, mut di) = (0.0, 0.0);
+            let mut bound = abs_c[deg];
+            for k in (0..deg).rev() {
+                let ndr = dr * z.re - di * z.im + pr;
+                let ndi = dr * z.im + di * z.re + pi;
+                dr = ndr;
+                di = ndi;
+                let npr = pr * z.re - pi * z.im + c[k];
+                let npi = pr * z.im + pi * z.re;
+                pr = npr;
+                pi = npi;
+                bound = bound * az + abs_c[k];
+            }
+            let pv2 = pr * pr + pi * pi;
+            let lim = tol * bound;
+            if pv2 <= lim * lim {
+                converged[i] = true;
+                continue;
+            }
+            all = false;
+            // sum_{j != i} 1 / (z - z_j)
+            let (mut sr, mut si) = (0.0, 0.0);
+            for (j, zj) in roots.iter().enumerate() {
+                if j != i {
+                    let (ar, ai) = (z.re - zj.re, z.im - zj.im);
+                    let d2 = ar * ar + ai * ai;
+                    if d2 > 0.0 {
+                        let inv = 1.0 / d2;
+                        sr += ar * inv;
+                        si -= ai * inv;
+                    }
+                }
+            }
+            let dp2 = dr * dr + di * di;
+            // ratio = p / p'
+            let (rr, ri) = if dp2 > 0.0 {
+                ((pr * dr + pi * di) / dp2, (pi * dr - pr * di) / dp2)
+            } else {
+                // Stationary point of p: nudge the approximation.
+                (1e-8 * (1.0 + az), 1e-8 * (1.0 + az))
+            };
+            // w = ratio / (1 - ratio * sum)
+            let (er, ei) = (1.0 - (rr * sr - ri * si), -(rr * si + ri * sr));
+            let e2 = er * er + ei * ei;
+            let (wr, wi) = if e2 > 0.0 {
+                ((rr * er + ri * ei) / e2, (ri * er - rr * ei) / e2)
+            } else {
+                (rr, ri)
+            };
+            let next = C64::new(z.re - wr, z.im - wi);
+            if next.re.is_finite() && next.im.is_finite() {
+                roots[i] = next;
+            } else {
+                converged[i] = true;
+            }
+        }
+        if all {
+            return true;
+        }
+    }
+    false
+}
+
+/// Bini's initial approximations: for each edge of the upper convex hull of
+/// the points (k, log|c_k|), place as many points as the edge is long on the
+/// circle of the radius the edge's slope gives, with rotated angles.
+fn init_newton_polygon(c: &[f64], roots: &mut [C64]) {
+    let deg = c.len() - 1;
+    let mut hull = [0usize; MAX_DEGREE + 1];
+    let mut h = 0usize;
+    let logc = |k: usize| -> f64 {
+        let a = c[k].abs();
+        if a > 0.0 {
+            a.ln()
+        } else {
+            f64::NEG_INFINITY
+        }
+    };
+    for (k, &ck) in c.iter().enumerate() {
+        if ck == 0.0 {
+            continue;
+        }
+        while h >= 2 {
+            let (i0, i1) = (hull[h - 2], hull[h - 1]);
+            // Keep the hull concave (upper hull): drop i1 if it lies on or
+            // below the segment i0 -> k.
+            let lhs = (logc(i1) - logc(i0)) * (k - i0) as f64;
+            let rhs = (logc(k) - logc(i0)) * (i1 - i0) as f64;
+            if lhs <= rhs {
+                h -= 1;
+            } else {
+                break;
+            }
+        }
+        hull[h] = k;
+        h += 1;
+    }
+    let sigma = 0.7;
+    let mut idx = 0usize;
+    for e in 0..h.saturating_sub(1) {
+        let (k0, k1) = (hull[e], hull[e + 1]);
+        let m = k1 - k0;
+        let radius = ((logc(k0) - logc(k1)) / m as f64).exp();
+        let radius = if radius.is_finite() && radius > 0.0 {
+            radius
+        } else {
+            1.0
+        };
+        for j in 0..m {
+            let ang =
+                std::f64::consts::TAU * (j as f64 / m as f64 + k0 as f64 / deg as f64) + sigma;
+            roots[idx] = C64::from_polar(radius, ang);
+            idx += 1;
+        }
+    }
+    // Hull always spans 0..=deg because c[0] != 0 and c[deg] != 0.
+    debug_assert_eq!(idx, deg);
+}
+
+/// A real solution (t1, t2) of `P = Q = 0`.
+pub(crate) type Solution = [f64; 2];
+
+/// Newton's method on the 2x2 system `P = Q = 0` from `t`. Returns the
+/// polished point when it converged to a real solution: both residuals below
+/// `1e-10` times their magnitude bound `sum |c_ij| |t1|^i |t2|^j`.
+pub(crate) fn polish(p: &Quartic2, q: &Quartic2, mut t: [f64; 2]) -> Option<Solution> {
+    for _ in 0..12 {
+        let (pv, p1, p2, pm) = p.eval_with_grad(t[0], t[1]);
+        let (qv, q1, q2, qm) = q.eval_with_grad(t[0], t[1]);
+        if pv.abs() <= 1e-15 * pm && qv.abs() <= 1e-15 * qm {
+            break;
+        }
+        let det = p1 * q2 - p2 * q1;
+        if det == 0.0 || !det.is_finite() {
+            break;
+        }
+        let d1 = (pv * q2 - p2 * qv) / det;
+        let d2 = (p1 * qv - pv * q1) / det;
+        t[0] -= d1;
+        t[1] -= d2;
+        if !(t[0].is_finite() && t[1].is_finite()) {
+            return None;
+        }
+        let size = 1.0 + t[0].abs() + t[1].abs();
+        if d1.abs() + d2.abs() <= 1e-14 * size {
+            break;
+        }
+    }
+    let (pv, _, _, pm) = p.eval_with_grad(t[0], t[1]);
+    let (qv, _, _, qm) = q.eval_with_grad(t[0], t[1]);
+    if pv.abs() <= 1e-10 * pm && qv.abs() <= 1e-10 * qm {
+        Some(t)
+    } else {
+        None
+    }
+}
+
+/// Roots of the previous resultant, reused as the starting point of the
+/// next root-finding (see [`min_l1_real_solution`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RootCache {
+    roots: [C64; MAX_DEGREE],
+    len: usize,
+}
+
+impl Default for RootCache {
+    fn default() -> Self {
+        Self {
+            roots: [C64::new(0.0, 0.0); MAX_DEGREE],
+            len: 0,
+        }
+    }
+}
+
+/// The real solution `t` of `P(t1, t2) = Q(t1, t2) = 0` minimising
+/// `|(M t)_1| + |(M t)_2|` for the 2x2 matrix `m` (row-major), or `None`
+/// when no real solution is found.
+///
+/// Method: hidden-variable elimination of t1 (the Bezout resultant, a
+/// polynomial of degree <= 16 in t2), all its complex roots by
+/// Aberth–Ehrlich (started from `cache`, the roots of the previous call,
+/// when it has the right degree; the new roots are stored back), and for
+/// every root close to the real axis the real roots t1 of `P(., t2)` at
+/// which `Q` nearly vanishes; each pair is polished by Newton's method on the
+/// 2x2 system and kept only when it solves both equations. Candidates are
+/// visited in increasing `|t2|`; since `|Mt|_1 >= sigma_min(M) |t|_2 >=
+/// sigma_min(M) |t2|`, the search stops once no remaining candidate can
+/// improve on the best.
+pub(crate) fn min_l1_real_solution(
+    p: &Quartic2,
+    q: &Quartic2,
+    m: [[f64; 2]; 2],
+    cache: &mut RootCache,
+) -> Option<Solution> {
+    let res = resultant_in_t2(p, q);
+    let scale = res.iter().fold(0.0_f64, |acc, c| acc.max(c.abs()));
+    if !(scale.is_finite() && scale > 1e-300) {
+        return None;
+    }
+    // Drop leading coefficients that are negligible: they only create roots
+    // near infinity.
+    let mut n = res.len();
+    while n > 1 && res[n - 1].abs() <= 1e-14 * scale {
+        n -= 1;
+    }
+    let mut roots = [C64::new(0.0, 0.0); MAX_DEGREE];
+    let warm = (cache.len > 0).then(|| &cache.roots[..cache.len]);
+    let nr = aberth_roots(&res[..n], &mut roots, warm);
+    cache.roots = roots;
+    cache.len = nr;
+
+    // Candidate t2 values: roots near the real axis, by increasing |t2|.
+    let mut cand = [0.0f64; MAX_DEGREE];
+    let mut nc = 0;
+    for z in roots.iter().take(nr) {
+        if z.im.abs() <= 1e-2 * (1.0 + z.re.abs()) {
+            cand[nc] = z.re;
+            nc += 1;
+        }
+    }
+    let cand = &mut cand[..nc];
+    cand.sort_by(|a, b| a.abs().total_cmp(&b.abs()));
+
+    let sigma_min = smallest_singular_value(m);
+    let objective = |s: &Solution| {
+        (m[0][0] * s[0] + m[0][1] * s[1]).abs() + (m[1][0] * s[0] + m[1][1] * s[1]).abs()
+    };
+    let mut best: Option<(f64, Solution)> = None;
+    let mut t1_roots = [C64::new(0.0, 0.0); MAX_DEGREE];
+    for &t2 in cand.iter() {
+        if let Some((b, _)) = best {
+            if sigma_min * t2.abs() > 1.01 * b {
+                break;
+            }
+        }
+        // The t1 candidates: real roots of P(., t2), or of Q(., t2) when P
+        // vanishes identically there.
+        let (first, other) = if p.coefs_in_t1(t2).iter().any(|&c| c != 0.0) {
+            (p, q)
+        } else {
+            (q, p)
+        };
+        let k = aberth_roots(&first.coefs_in_t1(t2), &mut t1_roots, None);
+        // Relative size of the other polynomial at each real candidate: at a
+        // common root it is at the level of the error of t2.
+        let mut picked = [(0.0f64, f64::INFINITY); 4];
+        let mut np = 0;
+        for z in t1_roots.iter().take(k) {
+            if z.im.abs() > 1e-2 * (1.0 + z.re.abs()) || np == picked.len() {
+                continue;
+            }
+            let (v, _, _, mag) = other.eval_with_grad(z.re, t2);
+            picked[np] = (z.re, if mag > 0.0 { v.abs() / mag } else { 0.0 });
+            np += 1;
+        }
+        let min_rel = picked[..np]
+            .iter()
+            .fold(f64::INFINITY, |a, &(_, r)| a.min(r));
+        for &(t1, rel) in &picked[..np] {
+            if rel > 1e-3 && rel > min_rel {
+                continue;
+            }
+            if let Some(s) = polish(p, q, [t1, t2]) {
+                let norm = objective(&s);
+                let better = match best {
+                    Some((b, _)) => norm < b,
+                    None => true,
+                };
+                if better {
+                    best = Some((norm, s));
+                }
+            }
+        }
+    }
+    best.map(|(_, s)| s)
+}
+
+/// The smallest singular value of a 2x2 matrix.
+fn smallest_singular_value(m: [[f64; 2]; 2]) -> f64 {
+    let (a, b, c, d) = (m[0][0], m[0][1], m[1][0], m[1][1]);
+    let s1 = (a + d).hypot(c - b);
+    let s2 = (a - d).hypot(c + b);
+    0.5 * (s1 - s2).abs()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn lin(c0: f64, c1: f64, c2: f64) -> Lin2 {
+        Lin2([c0, c1, c2])
+    }
+
+    /// Product of four lines a_k + b_k t1 + c_k t2.
+    fn product_of_lines(lines: &[[f64; 3]; 4]) -> Quartic2 {
+        let q1 = lin(lines[0][0], lines[0][1], lines[0][2]).mul(&lin(
+            lines[1][0],
+            lines[1][1],
+            lines[1][2],
+        ));
+        let q2 = lin(lines[2][0], lines[2][1], lines[2][2]).mul(&lin(
+            lines[3][0],
+            lines[3][1],
+            lines[3][2],
+        ));
+        q1.mul(&q2)
+    }
+
+    #[test]
+    fn polynomial_products_match_pointwise_products() {
+        let a = lin(0.3, -1.2, 0.7);
+        let b = lin(-2.0, 0.5, 1.5);
+        let c = lin(1.1, 0.2, -0.9);
+        let d = lin(0.4, -0.6, 0.25);
+        let q = a.mul(&b).mul(&c.mul(&d));
+        let ev = |l: &Lin2, x: f64, y: f64| l.0[0] + l.0[1] * x + l.0[2] * y;
+        for &(x, y) in &[(0.0, 0.0), (1.5, -0.3), (-2.2, 3.1), (0.7, 0.9)] {
+            let want = ev(&a, x, y) * ev(&b, x, y) * ev(&c, x, y) * ev(&d, x, y);
+            assert!((q.eval(x, y) - want).abs() <= 1e-12 * (1.0 + want.abs()));
+            // Gradient against central differences.
+            let (_, g1, g2, _) = q.eval_with_grad(x, y);
+            let h = 1e-6;
+            let n1 = (q.eval(x + h, y) - q.eval(x - h, y)) / (2.0 * h);
+            let n2 = (q.eval(x, y + h) - q.eval(x, y - h)) / (2.0 * h);
+            assert!((g1 - n1).abs() <= 1e-6 * (1.0 + n1.abs()));
+            assert!((g2 - n2).abs() <= 1e-6 * (1.0 + n2.abs()));
+        }
+    }
+
+    #[test]
+    fn unit_roots_match_trigonometry() {
+        for k in 0..NODES {
+            let ang = std::f64::consts::TAU * k as f64 / NODES as f64;
+            let z = unit_root(k);
+            assert!(
+                (z.re - ang.cos()).abs() < 1e-15 && (z.im - ang.sin()).abs() < 1e-15,
+                "k = {k}"
+            );
+        }
+    }
+
+    #[test]
+    fn aberth_finds_known_roots() {
+        // (z - 1)(z + 2)(z - 0.5)(z^2 + 1)(z - 30) expanded.
+        let roots_true = [1.0, -2.0, 0.5, 30.0];
+        let mut poly = vec![1.0];
+        let mul = |p: &Vec<f64>, r: &[f64]| -> Vec<f64> {
+            // multiply p by polynomial r (ascending)
+            let mut out = vec![0.0; p.len() + r.len() - 1];
+            for (i, a) in p.iter().enumerate() {
+                for (j, b) in r.iter().enumerate() {
+                    out[i + j] += a * b;
+                }
+            }
+            out
+        };
+        for r in roots_true {
+            poly = mul(&poly, &[-r, 1.0]);
+        }
+        poly = mul(&poly, &[1.0, 0.0, 1.0]);
+        let mut out = [C64::new(0.0, 0.0); MAX_DEGREE];
+        let n = aberth_roots(&poly, &mut out, None);
+        assert_eq!(n, 6);
+        for r in roots_true {
+            assert!(
+                out[..n]
+                    .iter()
+                    .any(|z| (z - C64::new(r, 0.0)).norm() < 1e-9),
+                "missing root {r}: {:?}",
+                &out[..n]
+            );
+        }
+        for im in [1.0, -1.0] {
+            assert!(out[..n]
+                .iter()
+                .any(|z| (z - C64::new(0.0, im)).norm() < 1e-9));
+        }
+    }
+
+    #[test]
+    fn aberth_deflates_zero_roots_and_trims_leading_zeros() {
+        // z^2 (z - 3), written with two trailing zero coefficients.
+        let poly = [0.0, 0.0, -3.0, 1.0, 0.0, 0.0];
+        let mut out = [C64::new(0.0, 0.0); MAX_DEGREE];
+        let n = aberth_roots(&poly, &mut out, None);
+        assert_eq!(n, 3);
+        assert_eq!(out[0], C64::new(0.0, 0.0));
+        assert_eq!(out[1], C64::new(0.0, 0.0));
+        assert!((out[2] - C64::new(3.0, 0.0)).norm() < 1e-12);
+    }
+
+    #[test]
+    fn resultant_vanishes_exactly_at_common_roots() {
+        // P = product of 4 lines, Q = product of 4 other lines: the 16
+        // intersection points are the solutions; the resultant in t2 must
+        // vanish at each intersection's t2.
+        let lp = [
+            [0.3, 1.0, 0.2],
+            [-0.5, 1.0, -0.4],
+            [0.1, 0.8, 1.0],
+            [-0.9, -0.3, 1.0],
+        ];
+        let lq = [
+            [0.2, 1.0, 0.9],
+            [0.7, -1.0, 0.35],
+            [-0.4, 0.15, 1.0],
+            [0.6, 0.5, -1.0],
+        ];
+        let p = product_of_lines(&lp);
+        let q = product_of_lines(&lq);
+        let res = resultant_in_t2(&p, &q);
+        let scale = res.iter().fold(0.0_f64, |m, c| m.max(c.abs()));
+        for a in &lp {
+            for b in &lq {
+                // Intersection of a0 + a1 t1 + a2 t2 = 0 and b0 + b1 t1 + b2 t2 = 0.
+                let det = a[1] * b[2] - a[2] * b[1];
+                let t2 = (a[1] * (-b[0]) - (-a[0]) * b[1]) / det;
+                let v: f64 = res.iter().rev().fold(0.0, |acc, c| acc * t2 + c);
+                let mag: f64 = res
+                    .iter()
+                    .rev()
+                    .fold(0.0, |acc, c| acc * t2.abs() + c.abs());
+                assert!(v.abs() <= 1e-10 * mag.max(scale), "t2 = {t2}: {v} vs {mag}");
+            }
+        }
+    }
+
+    #[test]
+    fn finds_the_smallest_of_sixteen_real_solutions() {
+        let lp = [
+            [0.3, 1.0, 0.2],
+            [-0.5, 1.0, -0.4],
+            [0.1, 0.8, 1.0],
+            [-0.9, -0.3, 1.0],
+        ];
+        let lq = [
+            [0.2, 1.0, 0.9],
+            [0.7, -1.0, 0.35],
+            [-0.4, 0.15, 1.0],
+            [0.6, 0.5, -1.0],
+        ];
+        let p = product_of_lines(&lp);
+        let q = product_of_lines(&lq);
+        let mut cache = RootCache::default();
+        for m in [
+            [[1.0, 0.0], [0.0, 1.0]],
+            [[1.0, 0.0], [0.0, 10.0]],
+            [[7.0, 0.0], [0.0, 0.5]],
+            [[1.0, 0.7], [-0.2, 1.5]],
+            [[0.3, -2.0], [1.0, 1.0]],
+        ] {
+            // Naive reference: all 16 intersections, minimum |M t|_1.
+            let norm = |t: [f64; 2]| {
+                (m[0][0] * t[0] + m[0][1] * t[1]).abs() + (m[1][0] * t[0] + m[1][1] * t[1]).abs()
+            };
+            let mut best = (f64::INFINITY, [0.0; 2]);
+            for a in &lp {
+                for b in &lq {
+                    let det = a[1] * b[2] - a[2] * b[1];
+                    let t1 = (-a[0] * b[2] + a[2] * b[0]) / det;
+                    let t2 = (a[1] * (-b[0]) + a[0] * b[1]) / det;
+                    if norm([t1, t2]) < best.0 {
+                        best = (norm([t1, t2]), [t1, t2]);
+                    }
+                }
+            }
+            // Cold start, and warm start from the previous call's roots.
+            for cache in [&mut RootCache::default(), &mut cache] {
+                let s = min_l1_real_solution(&p, &q, m, cache).expect("a solution");
+                assert!(
+                    (s[0] - best.1[0]).abs() < 1e-9 && (s[1] - best.1[1]).abs() < 1e-9,
+                    "M = {m:?}: got {s:?}, want {:?}",
+                    best.1
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn no_real_solution_is_reported_as_none() {
+        // P = (t1^2 + t2^2 + 1)(t1^2 + 2 t2^2 + 0.5) > 0 everywhere.
+        let c1 = Quad2([[1.0, 0.0, 1.0], [0.0, 0.0, 0.0], [1.0, 0.0, 0.0]]);
+        let c2 = Quad2([[0.5, 0.0, 2.0], [0.0, 0.0, 0.0], [1.0, 0.0, 0.0]]);
+        let p = c1.mul(&c2);
+        let q = lin(0.2, 1.0, -1.0)
+            .mul(&lin(1.0, 0.3, 0.1))
+            .mul(&lin(-0.4, 0.2, 1.0).mul(&lin(0.3, -1.0, 0.5)));
+        // The resultant is not identically zero: the system is generic.
+        let res = resultant_in_t2(&p, &q);
+        assert!(res.iter().any(|c| c.abs() > 1e-6));
+        assert!(
+            min_l1_real_solution(&p, &q, [[1.0, 0.0], [0.0, 1.0]], &mut RootCache::default())
+                .is_none()
+        );
+    }
+}

@@ -1,0 +1,490 @@
+//! The robust iterative focal solver of Kocur, Kyselica and Kukelova
+//! (CVPR 2024), as method.md step 4 specifies it, and the reference's
+//! multi-start rule.
+
+use nalgebra::Matrix3;
+use serde::{Deserialize, Serialize};
+
+use crate::error::FocalFailure;
+use crate::kruppa::KruppaSvd;
+use crate::poly::{min_l1_real_solution, RootCache};
+
+/// Weights of the deviation from the priors, `(w_f1, w_pp1, w_f2, w_pp2)`:
+/// the objective is `w_f1 (f1 - f_prior)^2 + w_pp1 |pp1|^2 + w_f2 (f2 -
+/// f_prior)^2 + w_pp2 |pp2|^2`, so each enters the step directions as `1/w`
+/// (method.md step 4).
+///
+/// Defaults (serde and [`Default`]): `(5e-4, 1, 5e-4, 1)`, PoseLib's.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct FocalWeights {
+    /// Weight of the focal length of image 1. Default `5e-4`.
+    pub f1: f64,
+    /// Weight of the principal point of image 1 (both coordinates). Default `1`.
+    pub pp1: f64,
+    /// Weight of the focal length of image 2. Default `5e-4`.
+    pub f2: f64,
+    /// Weight of the principal point of image 2 (both coordinates). Default `1`.
+    pub pp2: f64,
+}
+
+impl FocalWeights {
+    /// The weight set `(w_f1, w_pp1, w_f2, w_pp2)`.
+    pub const fn new(f1: f64, pp1: f64, f2: f64, pp2: f64) -> Self {
+        Self { f1, pp1, f2, pp2 }
+    }
+
+    /// Per-unknown weights for `x = (f1, u1, v1, f2, u2, v2)`.
+    fn per_unknown(&self) -> [f64; 6] {
+        [self.f1, self.pp1, self.pp1, self.f2, self.pp2, self.pp2]
+    }
+
+    fn validate(&self) -> Result<(), FocalFailure> {
+        for (name, value) in [
+            ("w_f1", self.f1),
+            ("w_pp1", self.pp1),
+            ("w_f2", self.f2),
+            ("w_pp2", self.pp2),
+        ] {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(FocalFailure::InvalidParameter {
+                    name,
+                    value,
+                    requirement: "must be finite and > 0",
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Default for FocalWeights {
+    fn default() -> Self {
+        Self::new(5e-4, 1.0, 5e-4, 1.0)
+    }
+}
+
+/// The weight sets the reference implementation tries on AdelaideRMF
+/// (method.md step 4, with `max_iters` 100).
+pub const ADELAIDE_WEIGHT_SETS: [FocalWeights; 4] = [
+    FocalWeights::new(1e-3, 1.0, 1e-3, 1.0),
+    FocalWeights::new(5e-4, 1.0, 5e-4, 1.0),
+    FocalWeights::new(1e-4, 1.0, 1e-4, 1.0),
+    FocalWeights::new(5e-4, 2.0, 5e-4, 2.0),
+];
+
+/// The reference's `max_iters` with [`ADELAIDE_WEIGHT_SETS`].
+pub const ADELAIDE_MAX_ITERS: usize = 100;
+
+/// The weight sets the reference implementation tries on HOPE-F (method.md
+/// step 4, with `max_iters` 120): the AdelaideRMF four plus
+/// `(1e-3, 2, 1e-3, 2)` and `(1e-4, 3, 1e-4, 3)`.
+pub const HOPEF_WEIGHT_SETS: [FocalWeights; 6] = [
+    FocalWeights::new(1e-3, 1.0, 1e-3, 1.0),
+    FocalWeights::new(5e-4, 1.0, 5e-4, 1.0),
+    FocalWeights::new(1e-4, 1.0, 1e-4, 1.0),
+    FocalWeights::new(5e-4, 2.0, 5e-4, 2.0),
+    FocalWeights::new(1e-3, 2.0, 1e-3, 2.0),
+    FocalWeights::new(1e-4, 3.0, 1e-4, 3.0),
+];
+
+/// The reference's `max_iters` with [`HOPEF_WEIGHT_SETS`].
+pub const HOPEF_MAX_ITERS: usize = 120;
+
+/// Parameters of [`robust_focals`].
+///
+/// Defaults (serde and [`Default`]): `f_prior` 1000 px, weights
+/// `(5e-4, 1, 5e-4, 1)`, `max_iters` 50. In the pipeline `f_prior` is
+/// `max(W, H)` of the images (method.md, Input).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct RobustFocalParams {
+    /// Prior focal length of both images, px. Default 1000.
+    pub f_prior: f64,
+    /// Weights of the deviation from the priors. Default `(5e-4, 1, 5e-4, 1)`.
+    pub weights: FocalWeights,
+    /// The iteration stops after at most `max_iters + 1` steps. Default 50.
+    pub max_iters: usize,
+}
+
+impl Default for RobustFocalParams {
+    fn default() -> Self {
+        Self {
+            f_prior: 1000.0,
+            weights: FocalWeights::default(),
+            max_iters: 50,
+        }
+    }
+}
+
+/// What to do when the robust solver fails (method.md step 4).
+///
+/// Serialised in lowercase: `"report"` or `"prior"`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum OnFailure {
+    /// Report the failure as an error (the project's default).
+    #[default]
+    Report,
+    /// Return the priors `f1 = f2 = f_prior`, `pp1 = pp2 = (0, 0)` with the
+    /// iteration count used, as the reference implementation does.
+    Prior,
+}
+
+/// An answer of the robust focal solver.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct FocalEstimate {
+    /// Focal length of image 1, px. Only `f1^2` enters the model, so the sign
+    /// carries no geometric meaning; it is reported as the iteration found it.
+    pub f1: f64,
+    /// Focal length of image 2, px (sign as for `f1`).
+    pub f2: f64,
+    /// Principal point of image 1 relative to the prior (0, 0), px.
+    pub pp1: [f64; 2],
+    /// Principal point of image 2 relative to the prior (0, 0), px.
+    pub pp2: [f64; 2],
+    /// The index k of the step at which the stopping rule fired (the first
+    /// step is k = 0, and the rule is first checked at k = 1), or
+    /// `max_iters + 1` when it never fired: PoseLib's reported count.
+    pub iterations: usize,
+    /// True when this is the prior returned for a failed solve
+    /// ([`OnFailure::Prior`]).
+    pub from_prior: bool,
+}
+
+impl FocalEstimate {
+    /// `x = (f1, u1, v1, f2, u2, v2)`.
+    pub fn unknowns(&self) -> [f64; 6] {
+        [
+            self.f1,
+            self.pp1[0],
+            self.pp1[1],
+            self.f2,
+            self.pp2[0],
+            self.pp2[1],
+        ]
+    }
+
+    /// The prior answer `f1 = f2 = f_prior`, principal points at the origin.
+    pub fn prior(f_prior: f64, iterations: usize) -> Self {
+        Self {
+            f1: f_prior,
+            f2: f_prior,
+            pp1: [0.0; 2],
+            pp2: [0.0; 2],
+            iterations,
+            from_prior: true,
+        }
+    }
+}
+
+/// The two Kruppa constraints `(g1, g2)` of method.md step 4 (Hartley &
+/// Zisserman's ratio form in the SVD of F) at the cameras
+/// `(f1, pp1)`, `(f2, pp2)`:
+///
+/// ```text
+/// F / |F| = U diag(s1, s2, 0) V^T,  w = K K^T = [[f^2+u^2, uv, u], [uv, f^2+v^2, v], [u, v, 1]]
+/// g1 = s1 (v1'w1v1)(u1'w2u2) + s2 (v1'w1v2)(u2'w2u2)
+/// g2 = s1 (v1'w1v2)(u1'w2u1) + s2 (v2'w1v2)(u1'w2u2)
+/// ```
+///
+/// (u_i columns of U: image 2; v_i columns of V: image 1). F is scaled to
+/// unit Frobenius norm. `None` when F is not finite or zero.
+pub fn kruppa_residuals(
+    f: &Matrix3<f64>,
+    f1: f64,
+    pp1: [f64; 2],
+    f2: f64,
+    pp2: [f64; 2],
+) -> Option<[f64; 2]> {
+    let k = KruppaSvd::new(f)?;
+    Some(k.eval(&[f1, pp1[0], pp1[1], f2, pp2[0], pp2[1]]))
+}
+
+/// The Kruppa residual of an estimate relative to the residual at the prior
+/// `p = (f_prior, 0, 0, f_prior, 0, 0)`: `max_i |g_i(x)| / max(max_i
+/// |g_i(p)|, 1e-8 T(p))` (the fixture's feasibility measure; a solver
+/// success has it <= [`KRUPPA_TOLERANCE`]). `T(p)` is the largest magnitude
+/// of the two products in each `g_i` at the prior, so the floor only matters
+/// when the prior itself satisfies the constraints to rounding level.
+/// `None` when F is not finite or zero.
+pub fn relative_kruppa_residual(
+    f: &Matrix3<f64>,
+    estimate: &FocalEstimate,
+    f_prior: f64,
+) -> Option<f64> {
+    let k = KruppaSvd::new(f)?;
+    Some(relative_residual(&k, &estimate.unknowns(), f_prior))
+}
+
+fn relative_residual(k: &KruppaSvd, x: &[f64; 6], f_prior: f64) -> f64 {
+    let g = k.eval(x);
+    let p = [f_prior, 0.0, 0.0, f_prior, 0.0, 0.0];
+    let g0 = k.eval(&p);
+    let num = g[0].abs().max(g[1].abs());
+    let den = g0[0]
+        .abs()
+        .max(g0[1].abs())
+        .max(1e-8 * k.term_magnitude(&p));
+    if num == 0.0 {
+        0.0
+    } else {
+        num / den
+    }
+}
+
+/// Tolerance of the final Kruppa check, relative to the prior's residual.
+pub const KRUPPA_TOLERANCE: f64 = 1e-6;
+
+/// Focal lengths and principal points of both images from F (principal
+/// points at the origin, `x2^T F x1 = 0`) by the robust iterative solver of
+/// Kocur, Kyselica and Kukelova (CVPR 2024), method.md step 4.
+///
+/// Unknowns `x = (f1, u1, v1, f2, u2, v2)`, prior
+/// `p = (f_prior, 0, 0, f_prior, 0, 0)`, objective
+/// `sum_i w_i (x_i - p_i)^2` subject to the Kruppa constraints
+/// `g1(x) = g2(x) = 0` (see [`kruppa_residuals`]). Starting from `x_0 = p`,
+/// step k takes the gradients of g1, g2 at `x_k` scaled by `1/w_i` as the
+/// directions `c1, c2` and sets `x_{k+1} = p + l1 c1 + l2 c2`, where
+/// `(l1, l2)` is the real solution of `g1 = g2 = 0` on that plane (two
+/// quartics in (l1, l2)) with the smallest `|l1| + |l2|`, found among all
+/// real solutions (hidden-variable resultant, see the crate docs). It stops
+/// when `e_k = |x_{k+1} - p|^2` changes by less than `1e-4` relative to
+/// `e_{k-1}` or `e_k < 1e-8` (checked from k = 1), or after step
+/// `k = max_iters`.
+///
+/// Every success satisfies both constraints to [`KRUPPA_TOLERANCE`]
+/// relative to their value at the prior ([`relative_kruppa_residual`]).
+/// Failures: [`FocalFailure::NoRealSolution`] when a step's plane holds no
+/// real solution, [`FocalFailure::NonFinite`],
+/// [`FocalFailure::NoConvergence`] when the final check fails, and
+/// [`FocalFailure::InvalidMatrix`] / [`FocalFailure::InvalidParameter`] for
+/// invalid input.
+///
+/// ```
+/// use nalgebra::{Matrix3, Rotation3, Vector3};
+/// use focal::{robust_focals, RobustFocalParams};
+/// let r = Rotation3::from_euler_angles(0.1, -0.25, 0.05).into_inner();
+/// let t = Vector3::new(0.4, -0.2, 1.0);
+/// let k_inv = Matrix3::from_diagonal(&Vector3::new(1.0 / 900.0, 1.0 / 900.0, 1.0));
+/// let f = k_inv.transpose() * t.cross_matrix() * r * k_inv;
+/// let est = robust_focals(&f, &RobustFocalParams { f_prior: 1000.0, ..Default::default() }).unwrap();
+/// // The weighted projection of the prior onto the constraints moves the
+/// // focal lengths from the prior towards the truth.
+/// assert!((est.f1 - 900.0).abs() < 100.0 && (est.f2 - 900.0).abs() < 100.0);
+/// let residual = focal::relative_kruppa_residual(&f, &est, 1000.0).unwrap();
+/// assert!(residual <= 1e-6);
+/// ```
+pub fn robust_focals(
+    f: &Matrix3<f64>,
+    params: &RobustFocalParams,
+) -> Result<FocalEstimate, FocalFailure> {
+    let f_prior = params.f_prior;
+    if !(f_prior.is_finite() && f_prior > 0.0) {
+        return Err(FocalFailure::InvalidParameter {
+            name: "f_prior",
+            value: f_prior,
+            requirement: "must be finite and > 0",
+        });
+    }
+    params.weights.validate()?;
+    let k = KruppaSvd::new(f).ok_or(FocalFailure::InvalidMatrix)?;
+    let w = params.weights.per_unknown();
+    let p = [f_prior, 0.0, 0.0, f_prior, 0.0, 0.0];
+
+    let mut x = p;
+    let mut cache = RootCache::default();
+    let mut e_prev = f64::NAN;
+    let mut iterations = params.max_iters + 1;
+    for step in 0..=params.max_iters {
+        let d = solve_step(&k, &p, &x, &w, &mut cache)
+            .ok_or(FocalFailure::NoRealSolution { iteration: step })?;
+        let e: f64 = d.iter().map(|v| v * v).sum();
+        for i in 0..6 {
+            x[i] = p[i] + d[i];
+        }
+        if !(e.is_finite() && x.iter().all(|v| v.is_finite())) {
+            return Err(FocalFailure::NonFinite { iteration: step });
+        }
+        if step > 0 && ((e_prev - e).abs() / e_prev.abs() < 1e-4 || e < 1e-8) {
+            iterations = step;
+            break;
+        }
+        e_prev = e;
+    }
+    let residual = relative_residual(&k, &x, f_prior);
+    if residual.is_nan() || residual > KRUPPA_TOLERANCE {
+        return Err(FocalFailure::NoConvergence {
+            iterations,
+            residual,
+        });
+    }
+    Ok(FocalEstimate {
+        f1: x[0],
+        f2: x[3],
+        pp1: [x[1], x[2]],
+        pp2: [x[4], x[5]],
+        iterations,
+        from_prior: false,
+    })
+}
+
+/// One step: the displacement `d = l1 c1 + l2 c2` from the prior, with
+/// `c_i = W^{-1} grad g_i(x)` and `(l1, l2)` the minimum-`|l1| + |l2|` real
+/// solution of `g(p + d) = 0`. `cache` carries the previous step's
+/// resultant roots as the starting point of this step's root-finding.
+///
+/// The plane is parametrised by an orthonormal basis `(b1, b2)` of
+/// `span(c1, c2)` (Gram–Schmidt, `[c1 c2] = [b1 b2] R`) scaled by `f_prior`:
+/// `d = f_prior (s1 b1 + s2 b2)`. The two directions are often nearly
+/// parallel, which makes the `(l1, l2)` parametrisation ill-conditioned; the
+/// solution set is the same, and `l = f_prior R^{-1} s` recovers the
+/// multipliers for the `|l1| + |l2|` criterion.
+fn solve_step(
+    k: &KruppaSvd,
+    p: &[f64; 6],
+    x: &[f64; 6],
+    w: &[f64; 6],
+    cache: &mut RootCache,
+) -> Option<[f64; 6]> {
+    let (_, j) = k.eval_with_grad(x);
+    let mut c = [[0.0; 6]; 2];
+    for r in 0..2 {
+        for i in 0..6 {
+            c[r][i] = j[r][i] / w[i];
+        }
+    }
+    let dot = |a: &[f64; 6], b: &[f64; 6]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    let r11 = dot(&c[0], &c[0]).sqrt();
+    if !(r11 > 0.0 && r11.is_finite()) {
+        return None;
+    }
+    let mut b1 = [0.0; 6];
+    for i in 0..6 {
+        b1[i] = c[0][i] / r11;
+    }
+    let r12 = dot(&b1, &c[1]);
+    let mut b2 = [0.0; 6];
+    for i in 0..6 {
+        b2[i] = c[1][i] - r12 * b1[i];
+    }
+    let r22 = dot(&b2, &b2).sqrt();
+    if !(r22 > 1e-12 * r11.max(r12.abs()) && r22.is_finite()) {
+        // c1 and c2 are parallel: the plane degenerates to a line.
+        return None;
+    }
+    let scale = p[0];
+    let mut e1 = [0.0; 6];
+    let mut e2 = [0.0; 6];
+    for i in 0..6 {
+        b2[i] /= r22;
+        e1[i] = scale * b1[i];
+        e2[i] = scale * b2[i];
+    }
+    let (q1, q2) = k.along_plane(p, &e1, &e2);
+    let (m1, m2) = (q1.max_abs_coef(), q2.max_abs_coef());
+    if !(m1 > 0.0 && m2 > 0.0 && m1.is_finite() && m2.is_finite()) {
+        return None;
+    }
+    let (q1, q2) = (q1.scaled(m1), q2.scaled(m2));
+    // l = scale R^{-1} s with R = [[r11, r12], [0, r22]]; the common factor
+    // `scale / r22` does not change the argmin, so it is left out.
+    let m = [[r22 / r11, -r12 / r11], [0.0, 1.0]];
+    let s = min_l1_real_solution(&q1, &q2, m, cache)?;
+    let mut d = [0.0; 6];
+    for (i, di) in d.iter_mut().enumerate() {
+        *di = s[0] * e1[i] + s[1] * e2[i];
+    }
+    Some(d)
+}
+
+/// Applies an [`OnFailure`] policy to a solver result: with
+/// [`OnFailure::Prior`], a failed solve ([`FocalFailure::is_solve_failure`])
+/// becomes [`FocalEstimate::prior`] with the iteration count the solver had
+/// used ([`FocalFailure::iterations`]); invalid input stays an error. With
+/// [`OnFailure::Report`] the result is returned unchanged.
+pub fn apply_on_failure(
+    result: Result<FocalEstimate, FocalFailure>,
+    f_prior: f64,
+    on_failure: OnFailure,
+) -> Result<FocalEstimate, FocalFailure> {
+    match (result, on_failure) {
+        (Err(e), OnFailure::Prior) if e.is_solve_failure() => {
+            Ok(FocalEstimate::prior(f_prior, e.iterations()))
+        }
+        (r, _) => r,
+    }
+}
+
+/// [`robust_focals`] followed by [`apply_on_failure`].
+pub fn robust_focals_or(
+    f: &Matrix3<f64>,
+    params: &RobustFocalParams,
+    on_failure: OnFailure,
+) -> Result<FocalEstimate, FocalFailure> {
+    apply_on_failure(robust_focals(f, params), params.f_prior, on_failure)
+}
+
+/// The reference's multi-start rule (method.md step 4): run
+/// [`robust_focals`] with each weight set and keep the answer with the
+/// fewest iterations, ties broken by the smallest `|f1 - f2|`, remaining
+/// ties by the earlier weight set.
+///
+/// Failures: with [`OnFailure::Prior`] a failed solve is replaced by the
+/// prior answer (`f1 = f2 = f_prior`, its iteration count) and competes like
+/// any other candidate, as in the reference implementation; with
+/// [`OnFailure::Report`] failed solves are skipped, and the call fails only
+/// when every weight set fails, with the first weight set's failure. An empty
+/// `weight_sets` is [`FocalFailure::NoWeightSets`].
+///
+/// ```
+/// use nalgebra::{Matrix3, Rotation3, Vector3};
+/// use focal::{robust_focals_multi_start, OnFailure, ADELAIDE_WEIGHT_SETS, ADELAIDE_MAX_ITERS};
+/// let r = Rotation3::from_euler_angles(0.1, -0.25, 0.05).into_inner();
+/// let t = Vector3::new(0.4, -0.2, 1.0);
+/// let k_inv = Matrix3::from_diagonal(&Vector3::new(1.0 / 900.0, 1.0 / 900.0, 1.0));
+/// let f = k_inv.transpose() * t.cross_matrix() * r * k_inv;
+/// let best = robust_focals_multi_start(
+///     &f, 1000.0, &ADELAIDE_WEIGHT_SETS, ADELAIDE_MAX_ITERS, OnFailure::Report,
+/// ).unwrap();
+/// assert!(!best.from_prior);
+/// ```
+pub fn robust_focals_multi_start(
+    f: &Matrix3<f64>,
+    f_prior: f64,
+    weight_sets: &[FocalWeights],
+    max_iters: usize,
+    on_failure: OnFailure,
+) -> Result<FocalEstimate, FocalFailure> {
+    let mut best: Option<FocalEstimate> = None;
+    let mut first_failure: Option<FocalFailure> = None;
+    for weights in weight_sets {
+        let params = RobustFocalParams {
+            f_prior,
+            weights: *weights,
+            max_iters,
+        };
+        match robust_focals_or(f, &params, on_failure) {
+            Ok(est) => {
+                let better = match &best {
+                    None => true,
+                    Some(b) => {
+                        (est.iterations, (est.f1 - est.f2).abs())
+                            < (b.iterations, (b.f1 - b.f2).abs())
+                    }
+                };
+                if better {
+                    best = Some(est);
+                }
+            }
+            Err(e) => {
+                first_failure.get_or_insert(e);
+            }
+        }
+    }
+    match (best, first_failure) {
+        (Some(b), _) => Ok(b),
+        (None, Some(e)) => Err(e),
+        (None, None) => Err(FocalFailure::NoWeightSets),
+    }
+}
