@@ -279,54 +279,99 @@ pub fn robust_focals(
     f: &Matrix3<f64>,
     params: &RobustFocalParams,
 ) -> Result<FocalEstimate, FocalFailure> {
-    let f_prior = params.f_prior;
-    if !(f_prior.is_finite() && f_prior > 0.0) {
-        return Err(FocalFailure::InvalidParameter {
-            name: "f_prior",
-            value: f_prior,
-            requirement: "must be finite and > 0",
-        });
+    let k = KruppaSvd::new(f);
+    let mut solve = Solve::start(k.as_ref(), params)?;
+    loop {
+        if let Some(result) = solve.next_step() {
+            return result;
+        }
     }
-    params.weights.validate()?;
-    let k = KruppaSvd::new(f).ok_or(FocalFailure::InvalidMatrix)?;
-    let w = params.weights.per_unknown();
-    let p = [f_prior, 0.0, 0.0, f_prior, 0.0, 0.0];
+}
 
-    let mut x = p;
-    let mut cache = RootCache::default();
-    let mut e_prev = f64::NAN;
-    let mut iterations = params.max_iters + 1;
-    for step in 0..=params.max_iters {
-        let d = solve_step(&k, &p, &x, &w, &mut cache)
-            .ok_or(FocalFailure::NoRealSolution { iteration: step })?;
+/// A robust focal solve in progress, advanced one step at a time (the
+/// iteration of [`robust_focals`]).
+struct Solve<'a> {
+    k: &'a KruppaSvd,
+    f_prior: f64,
+    max_iters: usize,
+    p: [f64; 6],
+    w: [f64; 6],
+    x: [f64; 6],
+    cache: RootCache,
+    e_prev: f64,
+    /// The index of the next step. The solve's final iteration count (success
+    /// or failure) is at least this: a step k that stops or fails reports k.
+    step: usize,
+}
+
+impl<'a> Solve<'a> {
+    /// Validates the parameters and F (given by its SVD, `None` when F is
+    /// invalid) in [`robust_focals`]'s order and starts at `x_0 = p`.
+    fn start(k: Option<&'a KruppaSvd>, params: &RobustFocalParams) -> Result<Self, FocalFailure> {
+        let f_prior = params.f_prior;
+        if !(f_prior.is_finite() && f_prior > 0.0) {
+            return Err(FocalFailure::InvalidParameter {
+                name: "f_prior",
+                value: f_prior,
+                requirement: "must be finite and > 0",
+            });
+        }
+        params.weights.validate()?;
+        let k = k.ok_or(FocalFailure::InvalidMatrix)?;
+        let p = [f_prior, 0.0, 0.0, f_prior, 0.0, 0.0];
+        Ok(Self {
+            k,
+            f_prior,
+            max_iters: params.max_iters,
+            p,
+            w: params.weights.per_unknown(),
+            x: p,
+            cache: RootCache::default(),
+            e_prev: f64::NAN,
+            step: 0,
+        })
+    }
+
+    /// Takes the next step; returns the solve's answer once it has ended.
+    fn next_step(&mut self) -> Option<Result<FocalEstimate, FocalFailure>> {
+        let step = self.step;
+        let Some(d) = solve_step(self.k, &self.p, &self.x, &self.w, &mut self.cache) else {
+            return Some(Err(FocalFailure::NoRealSolution { iteration: step }));
+        };
         let e: f64 = d.iter().map(|v| v * v).sum();
-        for i in 0..6 {
-            x[i] = p[i] + d[i];
+        for ((xi, pi), di) in self.x.iter_mut().zip(&self.p).zip(&d) {
+            *xi = pi + di;
         }
-        if !(e.is_finite() && x.iter().all(|v| v.is_finite())) {
-            return Err(FocalFailure::NonFinite { iteration: step });
+        if !(e.is_finite() && self.x.iter().all(|v| v.is_finite())) {
+            return Some(Err(FocalFailure::NonFinite { iteration: step }));
         }
-        if step > 0 && ((e_prev - e).abs() / e_prev.abs() < 1e-4 || e < 1e-8) {
-            iterations = step;
-            break;
+        if step > 0 && ((self.e_prev - e).abs() / self.e_prev.abs() < 1e-4 || e < 1e-8) {
+            return Some(self.finish(step));
         }
-        e_prev = e;
+        self.e_prev = e;
+        self.step += 1;
+        (self.step > self.max_iters).then(|| self.finish(self.max_iters + 1))
     }
-    let residual = relative_residual(&k, &x, f_prior);
-    if residual.is_nan() || residual > KRUPPA_TOLERANCE {
-        return Err(FocalFailure::NoConvergence {
+
+    /// The final Kruppa check of the current iterate.
+    fn finish(&self, iterations: usize) -> Result<FocalEstimate, FocalFailure> {
+        let x = &self.x;
+        let residual = relative_residual(self.k, x, self.f_prior);
+        if residual.is_nan() || residual > KRUPPA_TOLERANCE {
+            return Err(FocalFailure::NoConvergence {
+                iterations,
+                residual,
+            });
+        }
+        Ok(FocalEstimate {
+            f1: x[0],
+            f2: x[3],
+            pp1: [x[1], x[2]],
+            pp2: [x[4], x[5]],
             iterations,
-            residual,
-        });
+            from_prior: false,
+        })
     }
-    Ok(FocalEstimate {
-        f1: x[0],
-        f2: x[3],
-        pp1: [x[1], x[2]],
-        pp2: [x[4], x[5]],
-        iterations,
-        from_prior: false,
-    })
 }
 
 /// One step: the displacement `d = l1 c1 + l2 c2` from the prior, with
@@ -437,6 +482,11 @@ pub fn robust_focals_or(
 /// when every weight set fails, with the first weight set's failure. An empty
 /// `weight_sets` is [`FocalFailure::NoWeightSets`].
 ///
+/// The answer is exactly that of running every solve to its end, but the
+/// solves advance in lockstep and one whose iteration count is certain to
+/// exceed the fewest found so far is abandoned, since it can no longer win;
+/// the SVD of F is computed once for all weight sets.
+///
 /// ```
 /// use nalgebra::{Matrix3, Rotation3, Vector3};
 /// use focal::{robust_focals_multi_start, OnFailure, ADELAIDE_WEIGHT_SETS, ADELAIDE_MAX_ITERS};
@@ -456,15 +506,51 @@ pub fn robust_focals_multi_start(
     max_iters: usize,
     on_failure: OnFailure,
 ) -> Result<FocalEstimate, FocalFailure> {
-    let mut best: Option<FocalEstimate> = None;
-    let mut first_failure: Option<FocalFailure> = None;
-    for weights in weight_sets {
+    let svd = KruppaSvd::new(f);
+    // The answer of every weight set that ran to its end, in set order.
+    let mut outcomes: Vec<Option<Result<FocalEstimate, FocalFailure>>> =
+        vec![None; weight_sets.len()];
+    let mut live = Vec::with_capacity(weight_sets.len());
+    for (i, weights) in weight_sets.iter().enumerate() {
         let params = RobustFocalParams {
             f_prior,
             weights: *weights,
             max_iters,
         };
-        match robust_focals_or(f, &params, on_failure) {
+        match Solve::start(svd.as_ref(), &params) {
+            Ok(solve) => live.push((i, solve)),
+            Err(e) => outcomes[i] = Some(Err(e)),
+        }
+    }
+    // All solves advance in lockstep. Once a candidate with `n` iterations
+    // exists, a solve about to take a step k > n can only end with more
+    // iterations and can never win, so it is dropped; the candidates with the
+    // fewest iterations all run to their end, and the rule below picks among
+    // them exactly as among all answers. While no candidate exists nothing
+    // is dropped, so an all-failed `Report` call still sees every failure.
+    let mut cap = usize::MAX;
+    while !live.is_empty() {
+        live.retain_mut(|(i, solve)| {
+            if solve.step > cap {
+                return false;
+            }
+            match solve.next_step() {
+                None => true,
+                Some(result) => {
+                    let result = apply_on_failure(result, f_prior, on_failure);
+                    if let Ok(est) = &result {
+                        cap = cap.min(est.iterations);
+                    }
+                    outcomes[*i] = Some(result);
+                    false
+                }
+            }
+        });
+    }
+    let mut best: Option<FocalEstimate> = None;
+    let mut first_failure: Option<FocalFailure> = None;
+    for result in outcomes.into_iter().flatten() {
+        match result {
             Ok(est) => {
                 let better = match &best {
                     None => true,
@@ -486,5 +572,68 @@ pub fn robust_focals_multi_start(
         (Some(b), _) => Ok(b),
         (None, Some(e)) => Err(e),
         (None, None) => Err(FocalFailure::NoWeightSets),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::{Rotation3, Vector3};
+
+    /// `K2^-T [t]x R K1^-1` scaled to unit norm, plus a deterministic
+    /// perturbation of size `noise`.
+    fn sample_f(angles: [f64; 3], t: [f64; 3], f1: f64, f2: f64, noise: f64) -> Matrix3<f64> {
+        let r = Rotation3::from_euler_angles(angles[0], angles[1], angles[2]).into_inner();
+        let k1 = Matrix3::from_diagonal(&Vector3::new(1.0 / f1, 1.0 / f1, 1.0));
+        let k2 = Matrix3::from_diagonal(&Vector3::new(1.0 / f2, 1.0 / f2, 1.0));
+        let f = k2.transpose() * Vector3::from(t).cross_matrix() * r * k1;
+        f / f.norm() + Matrix3::from_fn(|i, j| noise * ((3 * i + j) as f64 * 1.7).sin())
+    }
+
+    /// The pruning of the multi-start rule relies on this: a solve that ends
+    /// while taking step k reports exactly k iterations (success or failure),
+    /// or `max_iters + 1` when it ran out of steps.
+    #[test]
+    fn a_solve_ending_at_step_k_reports_k_iterations() {
+        let matrices = [
+            sample_f([0.1, -0.25, 0.05], [0.4, -0.2, 1.0], 900.0, 900.0, 0.0),
+            sample_f([0.3, 0.4, -0.1], [1.0, 0.1, 0.2], 700.0, 1500.0, 1e-4),
+            sample_f([-0.2, 0.6, 0.3], [0.2, 1.0, -0.3], 1200.0, 1000.0, 1e-3),
+            sample_f([0.05, 0.02, 0.01], [1.0, 0.0, 0.0], 1000.0, 1000.0, 3e-2),
+        ];
+        let mut kinds = std::collections::BTreeSet::new();
+        for f in &matrices {
+            let svd = KruppaSvd::new(f);
+            for weights in HOPEF_WEIGHT_SETS {
+                for max_iters in [1, 2, 100] {
+                    let params = RobustFocalParams {
+                        f_prior: 1024.0,
+                        weights,
+                        max_iters,
+                    };
+                    let mut solve = Solve::start(svd.as_ref(), &params).unwrap();
+                    let (last_step, result) = loop {
+                        let step = solve.step;
+                        assert!(step <= max_iters);
+                        if let Some(result) = solve.next_step() {
+                            break (step, result);
+                        }
+                    };
+                    assert_eq!(result, robust_focals(f, &params));
+                    let count = match &result {
+                        Ok(est) => est.iterations,
+                        Err(e) => e.iterations(),
+                    };
+                    let ran_out = last_step == max_iters && count == max_iters + 1;
+                    assert!(
+                        count == last_step || ran_out,
+                        "{result:?} at step {last_step}"
+                    );
+                    kinds.insert((result.is_ok(), ran_out));
+                }
+            }
+        }
+        // Successes, failures and exhausted budgets were all exercised.
+        assert!(kinds.len() >= 3, "{kinds:?}");
     }
 }

@@ -105,6 +105,44 @@ fn multi_start_follows_the_reference_rule_for_both_policies() {
     assert!(prior_chosen > 0 && report_differs >= prior_chosen);
 }
 
+/// The weight sets in several orders, so that later sets need more
+/// iterations than earlier ones (and are abandoned early by the solver).
+#[test]
+fn multi_start_follows_the_reference_rule_in_every_set_order_and_budget() {
+    let mut orders: Vec<Vec<FocalWeights>> = Vec::new();
+    for shift in [0, 2] {
+        let mut sets = ADELAIDE_WEIGHT_SETS.to_vec();
+        sets.rotate_left(shift);
+        orders.push(sets.clone());
+        sets.reverse();
+        orders.push(sets);
+    }
+    for (f_prior, f) in fixture_matrices().into_iter().step_by(5) {
+        for sets in &orders {
+            for max_iters in [3, 100] {
+                for policy in [OnFailure::Report, OnFailure::Prior] {
+                    let per_set: Vec<_> = sets
+                        .iter()
+                        .map(|w| {
+                            let params = RobustFocalParams {
+                                f_prior,
+                                weights: *w,
+                                max_iters,
+                            };
+                            robust_focals_or(&f, &params, policy)
+                        })
+                        .collect();
+                    let got = robust_focals_multi_start(&f, f_prior, sets, max_iters, policy);
+                    match naive_choice(&per_set) {
+                        Some(want) => assert_eq!(got, Ok(want)),
+                        None => assert_eq!(got, Err(per_set[0].unwrap_err())),
+                    }
+                }
+            }
+        }
+    }
+}
+
 #[test]
 fn failure_policy() {
     // Row 13 of the fixture (kind planar): the step at k = 1 has no real
