@@ -1,0 +1,126 @@
+//! J-Linkage: binary preference sets, Jaccard distance, merged by
+//! intersection — the ancestor of T-Linkage, on the same heap machinery.
+
+use crate::distance::jaccard_distance;
+use crate::linkage::{agglomerate, AgglomerationState, Candidate, Clustering};
+use crate::BinaryPreferenceMatrix;
+use std::ops::Range;
+
+/// J-Linkage clustering of a binary preference matrix: agglomerate the
+/// closest pair by Jaccard distance `1 − |A ∩ B| / |A ∪ B|` (ties broken by
+/// the smaller `(i, j)`), the merged set being the intersection `A ∩ B` and
+/// keeping the smaller id, until the closest pair has distance `≥ 1`;
+/// clusters with fewer than `min_cluster_size` points are labelled −1.
+///
+/// Same lazy-deletion min-heap as [`crate::t_linkage`]; the labels and merges
+/// are exactly those of [`crate::reference::j_linkage`].
+///
+/// ```
+/// use clustering::{j_linkage, BinaryPreferenceMatrix};
+/// let b = BinaryPreferenceMatrix::from_rows(&[
+///     vec![true, true, false],
+///     vec![false, false, true],
+///     vec![true, true, false],
+/// ])
+/// .unwrap();
+/// let c = j_linkage(&b, 0);
+/// assert_eq!(c.labels, vec![0, 1, 0]);
+/// assert_eq!(c.merges[0].distance, 0.0);
+/// ```
+pub fn j_linkage(preferences: &BinaryPreferenceMatrix, min_cluster_size: usize) -> Clustering {
+    agglomerate(BinaryState::new(preferences), min_cluster_size)
+}
+
+/// Bit sets of the clusters (point-major, `words` words each) and their sizes.
+struct BinaryState {
+    n: usize,
+    words: usize,
+    bits: Vec<u64>,
+    counts: Vec<u64>,
+}
+
+impl BinaryState {
+    fn new(preferences: &BinaryPreferenceMatrix) -> Self {
+        let n = preferences.n_points();
+        let words = preferences.words_per_row();
+        let bits: Vec<u64> = (0..n)
+            .flat_map(|i| preferences.row_bits(i).iter().copied())
+            .collect();
+        let counts = (0..n)
+            .map(|i| popcount(&bits[i * words..(i + 1) * words]))
+            .collect();
+        Self {
+            n,
+            words,
+            bits,
+            counts,
+        }
+    }
+
+    fn row(&self, i: usize) -> &[u64] {
+        &self.bits[i * self.words..(i + 1) * self.words]
+    }
+
+    fn distance(&self, i: usize, k: usize) -> f64 {
+        let intersection: u64 = self
+            .row(i)
+            .iter()
+            .zip(self.row(k))
+            .map(|(a, b)| u64::from((a & b).count_ones()))
+            .sum();
+        jaccard_distance(intersection, self.counts[i] + self.counts[k] - intersection)
+    }
+}
+
+fn popcount(words: &[u64]) -> u64 {
+    words.iter().map(|w| u64::from(w.count_ones())).sum()
+}
+
+impl AgglomerationState for BinaryState {
+    fn n_clusters(&self) -> usize {
+        self.n
+    }
+
+    fn initial_distances(&self, rows: Range<usize>, out: &mut Vec<(u32, u32, Candidate)>) {
+        for i in rows {
+            if self.counts[i] == 0 {
+                continue;
+            }
+            for k in i + 1..self.n {
+                let d = self.distance(i, k);
+                if d < 1.0 {
+                    out.push((i as u32, k as u32, Candidate { d, exact: true }));
+                }
+            }
+        }
+    }
+
+    fn exact_distance(&mut self, i: usize, k: usize) -> f64 {
+        self.distance(i, k)
+    }
+
+    fn merge(
+        &mut self,
+        kept: usize,
+        removed: usize,
+        active: &[bool],
+        out: &mut Vec<(u32, Candidate)>,
+    ) {
+        let w = self.words;
+        let (head, tail) = self.bits.split_at_mut(removed * w);
+        for (a, b) in head[kept * w..(kept + 1) * w].iter_mut().zip(&tail[..w]) {
+            *a &= b;
+        }
+        self.counts[kept] = popcount(self.row(kept));
+        self.counts[removed] = 0;
+        if self.counts[kept] == 0 {
+            return;
+        }
+        for k in (0..self.n).filter(|&k| k != kept && active[k]) {
+            let d = self.distance(kept, k);
+            if d < 1.0 {
+                out.push((k as u32, Candidate { d, exact: true }));
+            }
+        }
+    }
+}

@@ -1,0 +1,626 @@
+//! T-Linkage (method.md step 8): Tanimoto distance (Eq. 39) between
+//! continuous preference vectors, merged by element-wise minimum (Eq. 40).
+
+use crate::distance::{tanimoto_distance, tanimoto_lower_bound};
+use crate::linkage::{agglomerate, AgglomerationState, Candidate, Clustering};
+use crate::PreferenceMatrix;
+use std::borrow::Cow;
+use std::ops::Range;
+
+/// T-Linkage clustering of a continuous preference matrix (method.md steps
+/// 8–9, Eq. 39–40), with the lazy-deletion min-heap of Section 6.3.
+///
+/// Pairs are merged closest first, ties broken by the smaller `(i, j)`; the
+/// merged vector is the element-wise minimum of the two (Eq. 40) and keeps
+/// the smaller id; the agglomeration stops when the closest pair has
+/// Tanimoto distance `≥ 1` (no shared preference). Clusters with fewer than
+/// `min_cluster_size` points are labelled −1 (step 9; 0 or 1 keeps all).
+///
+/// The labels and merges are exactly those of
+/// [`crate::reference::t_linkage`], the plain O(N³) definition: every
+/// distance that decides a merge is computed in f64 with the inner products
+/// summed in hypothesis order (see [`crate::distance`]).
+///
+/// ```
+/// use clustering::{t_linkage, PreferenceMatrix};
+/// let p = PreferenceMatrix::from_rows(&[
+///     vec![1.0, 0.9, 0.0, 0.0],
+///     vec![0.0, 0.0, 1.0, 0.8],
+///     vec![0.9, 1.0, 0.0, 0.0],
+///     vec![0.0, 0.0, 0.7, 1.0],
+///     vec![0.0, 0.0, 0.0, 0.0], // prefers nothing
+/// ])
+/// .unwrap();
+/// let c = t_linkage(&p, 2);
+/// assert_eq!(c.labels, vec![0, 1, 0, 1, -1]);
+/// assert_eq!((c.clusters_before_filter, c.clusters_after_filter), (3, 2));
+/// assert_eq!((c.merges[0].kept, c.merges[0].removed), (0, 2));
+/// ```
+pub fn t_linkage(preferences: &PreferenceMatrix, min_cluster_size: usize) -> Clustering {
+    agglomerate(ContinuousState::new(preferences), min_cluster_size)
+}
+
+/// Quantisation levels of the bound matrix: a preference φ is stored as an
+/// integer `q ≥ 65535 φ` (`q = 0` iff `φ = 0`).
+const LEVELS: f64 = 65535.0;
+/// The slot count of the bound matrix is a multiple of this.
+const LANES: usize = 16;
+/// Products summed in f32 before the partial sum is added to the f64 total.
+const CHUNK: usize = 64;
+/// Marks a slot that holds no active cluster.
+const DEAD: u32 = u32::MAX;
+/// The bound matrix is compacted when half of its slots are dead and it has
+/// more slots than this.
+const MIN_COMPACTION_WIDTH: usize = 64;
+
+/// `q = ⌈65535 φ⌉` computed so that `q ≥ 65535 φ` holds exactly (the
+/// product is inflated by 2⁻⁵⁰ before rounding up), capped at 65535 (`φ ≤ 1`).
+#[inline]
+fn quantise(v: f64) -> u16 {
+    if v > 0.0 {
+        let scaled = (v * LEVELS * (1.0 + 4.0 * f64::EPSILON)).min(LEVELS);
+        let q = scaled as u16; // truncation: ⌊scaled⌋
+        if f64::from(q) < scaled {
+            q + 1
+        } else {
+            q
+        }
+    } else {
+        0
+    }
+}
+
+/// Inner products of exact preference vectors, as sparse sorted lists:
+/// `Σ_j p_j · q_j` over the common hypotheses in ascending order — the
+/// ordered sum of [`crate::distance`] without its zero terms.
+fn exact_dot(p_index: &[u32], p_value: &[f64], q_index: &[u32], q_value: &[f64]) -> f64 {
+    let (mut x, mut y, mut sum) = (0, 0, 0.0);
+    while x < p_index.len() && y < q_index.len() {
+        match p_index[x].cmp(&q_index[y]) {
+            std::cmp::Ordering::Less => x += 1,
+            std::cmp::Ordering::Greater => y += 1,
+            std::cmp::Ordering::Equal => {
+                sum += p_value[x] * q_value[y];
+                x += 1;
+                y += 1;
+            }
+        }
+    }
+    sum
+}
+
+/// Cluster vectors of T-Linkage.
+///
+/// *Exact part.* Each cluster's preference vector as two sorted lists (the
+/// hypotheses it prefers, `> 0`, and the f64 values), and its squared norm
+/// summed in hypothesis order. Merges (Eq. 40) and every distance that can
+/// decide a merge use only these, with the arithmetic of the reference.
+///
+/// *Bound part.* An N × M matrix of `u16` upper bounds `q_cj ≥ 65535 φ_cj`,
+/// hypothesis-major (row j holds every slot's `q` for hypothesis j; each
+/// active cluster owns a slot, slots in ascending cluster order, compacted
+/// when half are dead). After a merge, one sweep over the rows of the merged
+/// cluster's hypotheses gives, for every other cluster at once,
+/// `S = Σ_j q_aj · q_kj ≥ 65535² <p_a, p_k>`; the Tanimoto distance at
+/// `dot_upper(S)` is a certified lower bound, pushed instead of the
+/// distance. Exact distances are computed only for the bounds that reach
+/// the top of the heap, typically about one per merge. The `u16` matrix is a
+/// quarter of an f64 one, so the sweeps stay in cache.
+struct ContinuousState<'a> {
+    n: usize,
+    /// Borrowed from the matrix until the cluster first absorbs another.
+    index: Vec<Cow<'a, [u32]>>,
+    value: Vec<Cow<'a, [f64]>>,
+    norms: Vec<f64>,
+    /// Slots per row of `bounds`, a multiple of [`LANES`].
+    width: usize,
+    bounds: Vec<u16>,
+    cluster_of_slot: Vec<u32>,
+    slot_of_cluster: Vec<u32>,
+    live_slots: usize,
+    /// See [`bound_margin`].
+    margin: f64,
+    /// Scratch: bound sums of the merged cluster with every slot, and their
+    /// f32 partial sums.
+    acc: Vec<f64>,
+    partial: Vec<f32>,
+    /// Scratch: the merged cluster's quantised preferences.
+    multipliers: Vec<(u32, f32)>,
+    /// Whether to run the AVX2 versions of the bound kernels.
+    avx2: bool,
+}
+
+/// `γ_n = n u / (1 − n u)`, the classic bound on the relative error of a sum
+/// of n non-negative terms in a format of unit roundoff u.
+fn gamma(n: f64, unit_roundoff: f64) -> f64 {
+    n * unit_roundoff / (1.0 - n * unit_roundoff)
+}
+
+/// The factor that turns a computed bound sum into a certified upper bound
+/// of the computed inner product, for M hypotheses (see
+/// [`ContinuousState::dot_upper`]):
+/// `(1 + γ⁶⁴_(M+1)) (1 + u₆₄)⁴ / ((1 − γ³²_(C+1)) (1 − γ⁶⁴_M))`, inflated by
+/// `1 + 2⁻⁴⁸` for the rounding of this very evaluation.
+fn bound_margin(n_hypotheses: usize) -> f64 {
+    let (u32_, u64_) = (f64::from(f32::EPSILON) / 2.0, f64::EPSILON / 2.0);
+    let m = n_hypotheses as f64;
+    let numerator = (1.0 + gamma(m + 1.0, u64_)) * (1.0 + u64_).powi(4);
+    let denominator = (1.0 - gamma(CHUNK as f64 + 1.0, u32_)) * (1.0 - gamma(m, u64_));
+    numerator / denominator * (1.0 + 2f64.powi(-48))
+}
+
+impl<'a> ContinuousState<'a> {
+    fn new(preferences: &'a PreferenceMatrix) -> Self {
+        let n = preferences.n_points();
+        let m = preferences.n_hypotheses();
+        let width = n.next_multiple_of(LANES);
+        let mut bounds = vec![0u16; m * width];
+        let (mut index, mut value, mut norms) = (Vec::new(), Vec::new(), Vec::new());
+        for i in 0..n {
+            let (hypotheses, values) = preferences.row_support(i);
+            let mut norm = 0.0;
+            for (&j, &v) in hypotheses.iter().zip(values) {
+                bounds[j as usize * width + i] = quantise(v);
+                norm += v * v;
+            }
+            index.push(Cow::Borrowed(hypotheses));
+            value.push(Cow::Borrowed(values));
+            norms.push(norm);
+        }
+        Self {
+            n,
+            index,
+            value,
+            norms,
+            width,
+            bounds,
+            cluster_of_slot: (0..width)
+                .map(|s| if s < n { s as u32 } else { DEAD })
+                .collect(),
+            slot_of_cluster: (0..n as u32).collect(),
+            live_slots: n,
+            margin: bound_margin(m),
+            acc: vec![0.0; width],
+            partial: vec![0.0; width],
+            multipliers: Vec::new(),
+            avx2: avx2_available(),
+        }
+    }
+
+    /// An upper bound of the computed inner product `<p, q>` from the bound
+    /// sum `S` of the quantised vectors.
+    ///
+    /// In exact arithmetic `Σ_j q_pj q_qj / 65535² ≥ <p, q>`, since every
+    /// `q ≥ 65535 φ`. The kernels form the products and partial sums of at
+    /// most [`CHUNK`] terms in f32 (relative loss at most `γ³²_(C+1)`, all
+    /// terms being non-negative integers-valued products, so no underflow),
+    /// then add the partial sums in f64 (loss at most `γ⁶⁴_M`); the ordered
+    /// f64 sum of the exact inner product exceeds the real value by at most
+    /// `1 + γ⁶⁴_(M+1)`. [`bound_margin`] covers all of these and the
+    /// roundings of this function.
+    #[inline]
+    fn dot_upper(&self, sum: f64) -> f64 {
+        sum * self.margin / (LEVELS * LEVELS)
+    }
+
+    fn lower_bound(&self, sum: f64, norm_p: f64, norm_q: f64) -> Candidate {
+        Candidate {
+            d: tanimoto_lower_bound(self.dot_upper(sum), norm_p, norm_q),
+            exact: false,
+        }
+    }
+
+    /// Drops the dead slots: rebuilds the bound matrix with the live slots,
+    /// in the same (ascending cluster) order.
+    fn compact(&mut self) {
+        let live: Vec<usize> = (0..self.width)
+            .filter(|&s| self.cluster_of_slot[s] != DEAD)
+            .collect();
+        let width = live.len().next_multiple_of(LANES);
+        let m = self.bounds.len() / self.width;
+        let mut bounds = vec![0u16; m * width];
+        for (new_row, old_row) in bounds
+            .chunks_exact_mut(width)
+            .zip(self.bounds.chunks_exact(self.width))
+        {
+            for (new, &old) in new_row.iter_mut().zip(&live) {
+                *new = old_row[old];
+            }
+        }
+        let mut cluster_of_slot = vec![DEAD; width];
+        for (new, &old) in live.iter().enumerate() {
+            let c = self.cluster_of_slot[old];
+            cluster_of_slot[new] = c;
+            self.slot_of_cluster[c as usize] = new as u32;
+        }
+        self.width = width;
+        self.bounds = bounds;
+        self.cluster_of_slot = cluster_of_slot;
+        self.acc = vec![0.0; width];
+        self.partial = vec![0.0; width];
+    }
+
+    /// Eq. 40 on the exact lists: `kept ← min(kept, removed)`, which is
+    /// non-zero exactly on the common hypotheses; the bound column of `kept`
+    /// is rewritten to match. Returns the new squared norm.
+    fn merge_exact(&mut self, kept: usize, removed: usize) -> f64 {
+        let (old_index, old_value) = (
+            std::mem::take(&mut self.index[kept]),
+            std::mem::take(&mut self.value[kept]),
+        );
+        let (b_index, b_value) = (
+            std::mem::take(&mut self.index[removed]),
+            std::mem::take(&mut self.value[removed]),
+        );
+        let slot = self.slot_of_cluster[kept] as usize;
+        let (mut index, mut value) = (Vec::new(), Vec::new());
+        let (mut y, mut norm) = (0, 0.0);
+        for (&j, &a) in old_index.iter().zip(old_value.iter()) {
+            while y < b_index.len() && b_index[y] < j {
+                y += 1;
+            }
+            let merged = if y < b_index.len() && b_index[y] == j {
+                let v = a.min(b_value[y]);
+                index.push(j);
+                value.push(v);
+                norm += v * v;
+                v
+            } else {
+                0.0
+            };
+            self.bounds[j as usize * self.width + slot] = quantise(merged);
+        }
+        self.index[kept] = Cow::Owned(index);
+        self.value[kept] = Cow::Owned(value);
+        norm
+    }
+}
+
+/// `partial[s] += q · row[s]` for every slot s, in f32.
+#[inline(always)]
+fn axpy_bounds(partial: &mut [f32], q: f32, row: &[u16]) {
+    for (a, &r) in partial.iter_mut().zip(row) {
+        *a += q * f32::from(r);
+    }
+}
+
+/// `total[s] += partial[s]` in f64, then `partial[s] = 0`.
+#[inline(always)]
+fn flush(total: &mut [f64], partial: &mut [f32]) {
+    for (t, p) in total.iter_mut().zip(partial.iter_mut()) {
+        *t += f64::from(*p);
+        *p = 0.0;
+    }
+}
+
+/// Lower bounds of the initial distances of the rows in `rows` (at most
+/// [`crate::linkage::ROWS_PER_TASK`] consecutive points) to every later point.
+#[inline(always)]
+fn initial_block(
+    state: &ContinuousState,
+    rows: Range<usize>,
+    out: &mut Vec<(u32, u32, Candidate)>,
+) {
+    let (n, width) = (state.n, state.width);
+    let first = rows.start;
+    let columns = width - first;
+    let mut total = vec![0.0f64; rows.len() * columns];
+    let mut partial = vec![0.0f32; rows.len() * columns];
+    let mut counts = vec![0usize; rows.len()];
+    // The hypotheses preferred by at least one row, ascending.
+    let m = state.bounds.len() / width.max(1);
+    let mut preferred = vec![false; m];
+    for i in rows.clone() {
+        for &j in state.index[i].iter() {
+            preferred[j as usize] = true;
+        }
+    }
+    for j in (0..m).filter(|&j| preferred[j]) {
+        let row = &state.bounds[j * width + first..(j + 1) * width];
+        for (x, (sums, count)) in partial
+            .chunks_exact_mut(columns)
+            .zip(counts.iter_mut())
+            .enumerate()
+        {
+            let q = row[x];
+            if q != 0 {
+                axpy_bounds(&mut sums[x + 1..], f32::from(q), &row[x + 1..]);
+                *count += 1;
+                if *count == CHUNK {
+                    flush(&mut total[x * columns..(x + 1) * columns], sums);
+                    *count = 0;
+                }
+            }
+        }
+    }
+    flush(&mut total, &mut partial);
+    for (x, sums) in total.chunks_exact(columns).enumerate() {
+        let i = first + x;
+        for k in i + 1..n {
+            let candidate = state.lower_bound(sums[k - first], state.norms[i], state.norms[k]);
+            if candidate.d < 1.0 {
+                out.push((i as u32, k as u32, candidate));
+            }
+        }
+    }
+}
+
+/// Bound sums `Σ_j q_cj · q_sj` of the (already merged) `cluster` with every
+/// slot s, into `state.acc`.
+#[inline(always)]
+fn merged_sweep(state: &mut ContinuousState, cluster: usize) {
+    let width = state.width;
+    let mut multipliers = std::mem::take(&mut state.multipliers);
+    multipliers.clear();
+    multipliers.extend(
+        state.index[cluster]
+            .iter()
+            .zip(state.value[cluster].iter())
+            .map(|(&j, &v)| (j, f32::from(quantise(v)))),
+    );
+    state.acc.fill(0.0);
+    for chunk in multipliers.chunks(CHUNK) {
+        for &(j, q) in chunk {
+            let row = &state.bounds[j as usize * width..(j as usize + 1) * width];
+            axpy_bounds(&mut state.partial, q, row);
+        }
+        flush(&mut state.acc, &mut state.partial);
+    }
+    state.multipliers = multipliers;
+}
+
+/// [`initial_block`] compiled for AVX2.
+///
+/// # Safety
+/// The CPU must support AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn initial_block_avx2(
+    state: &ContinuousState,
+    rows: Range<usize>,
+    out: &mut Vec<(u32, u32, Candidate)>,
+) {
+    initial_block(state, rows, out)
+}
+
+/// [`merged_sweep`] compiled for AVX2.
+///
+/// # Safety
+/// The CPU must support AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn merged_sweep_avx2(state: &mut ContinuousState, cluster: usize) {
+    merged_sweep(state, cluster)
+}
+
+/// Whether the AVX2 versions of the bound kernels can run. They perform the
+/// same operations in the same order as the portable ones (no fused
+/// multiply-add), and bounds only decide which pairs get an exact distance
+/// computed, never its value.
+fn avx2_available() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("avx2")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
+impl AgglomerationState for ContinuousState<'_> {
+    fn n_clusters(&self) -> usize {
+        self.n
+    }
+
+    fn initial_distances(&self, rows: Range<usize>, out: &mut Vec<(u32, u32, Candidate)>) {
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            // SAFETY: `avx2` is set only when the CPU supports AVX2.
+            return unsafe { initial_block_avx2(self, rows, out) };
+        }
+        initial_block(self, rows, out)
+    }
+
+    fn exact_distance(&mut self, i: usize, k: usize) -> f64 {
+        let dot = exact_dot(
+            &self.index[i],
+            &self.value[i],
+            &self.index[k],
+            &self.value[k],
+        );
+        tanimoto_distance(dot, self.norms[i], self.norms[k])
+    }
+
+    fn merge(
+        &mut self,
+        kept: usize,
+        removed: usize,
+        active: &[bool],
+        out: &mut Vec<(u32, Candidate)>,
+    ) {
+        let norm = self.merge_exact(kept, removed);
+        self.norms[kept] = norm;
+        if self.avx2 {
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: `avx2` is set only when the CPU supports AVX2.
+            unsafe {
+                merged_sweep_avx2(self, kept)
+            };
+        } else {
+            merged_sweep(self, kept);
+        }
+        let own_slot = self.slot_of_cluster[kept] as usize;
+        for (s, &c) in self.cluster_of_slot.iter().enumerate() {
+            if c == DEAD || s == own_slot || !active[c as usize] {
+                continue;
+            }
+            let candidate = self.lower_bound(self.acc[s], norm, self.norms[c as usize]);
+            if candidate.d < 1.0 {
+                out.push((c, candidate));
+            }
+        }
+        let removed_slot = self.slot_of_cluster[removed] as usize;
+        self.cluster_of_slot[removed_slot] = DEAD;
+        self.slot_of_cluster[removed] = DEAD;
+        self.live_slots -= 1;
+        if self.width > MIN_COMPACTION_WIDTH && 2 * self.live_slots <= self.width {
+            self.compact();
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::reference;
+
+    /// A small deterministic generator (xorshift) for the tests of this module.
+    struct Xorshift(u64);
+
+    impl Xorshift {
+        fn next(&mut self) -> u64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            self.0
+        }
+        fn uniform(&mut self) -> f64 {
+            (self.next() >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    /// Values that stress the quantisation: 1, the Eq. 38 minimum, values on
+    /// and next to the quantisation grid, tiny and subnormal values.
+    fn awkward_value(rng: &mut Xorshift) -> f64 {
+        let k = (rng.next() % 65536) as f64;
+        match rng.next() % 8 {
+            0 => 1.0,
+            1 => (-5.0f64).exp(),
+            2 => k / LEVELS,
+            3 => (k / LEVELS) * (1.0 + f64::EPSILON),
+            4 => (k / LEVELS) * (1.0 - f64::EPSILON),
+            5 => 1e-300 * rng.uniform(),
+            6 => f64::from_bits(1 + rng.next() % 1000),
+            _ => rng.uniform(),
+        }
+    }
+
+    fn random_matrix(rng: &mut Xorshift, n: usize, m: usize, density: f64) -> PreferenceMatrix {
+        let rows: Vec<Vec<f64>> = (0..n)
+            .map(|_| {
+                (0..m)
+                    .map(|_| {
+                        if rng.uniform() < density {
+                            awkward_value(rng)
+                        } else {
+                            0.0
+                        }
+                    })
+                    .collect()
+            })
+            .collect();
+        PreferenceMatrix::from_rows(&rows).unwrap()
+    }
+
+    #[test]
+    fn quantisation_rounds_up_and_keeps_zero() {
+        let mut rng = Xorshift(99);
+        assert_eq!(quantise(0.0), 0);
+        assert_eq!(quantise(1.0), 65535);
+        assert_eq!(quantise(f64::from_bits(1)), 1);
+        for _ in 0..100_000 {
+            let v = awkward_value(&mut rng);
+            let q = quantise(v);
+            assert!(f64::from(q) >= v * LEVELS, "q({v}) = {q}");
+            assert!(
+                f64::from(q) <= v * LEVELS * (1.0 + 1e-12) + 1.0,
+                "q({v}) = {q} too large"
+            );
+        }
+    }
+
+    /// Every candidate the kernels produce, initial or after a merge, is at
+    /// most the exact distance (a certified lower bound), for both kernel
+    /// versions.
+    #[test]
+    fn bounds_never_exceed_distances() {
+        let mut rng = Xorshift(12345);
+        for case in 0..60 {
+            let (n, m) = (
+                2 + (rng.next() % 40) as usize,
+                1 + (rng.next() % 300) as usize,
+            );
+            let p = random_matrix(&mut rng, n, m, [0.05, 0.3, 1.0][case % 3]);
+            for avx2 in [false, avx2_available()] {
+                let mut state = ContinuousState::new(&p);
+                state.avx2 = avx2;
+                let mut pairs = Vec::new();
+                state.initial_distances(0..n, &mut pairs);
+                for &(i, k, c) in &pairs {
+                    let d = state.exact_distance(i as usize, k as usize);
+                    assert!(
+                        !c.exact && c.d <= d,
+                        "case {case}: ({i}, {k}) bound {} > {d}",
+                        c.d
+                    );
+                }
+                // Every pair with d < 1 has a candidate.
+                let expected = (0..n)
+                    .flat_map(|i| (i + 1..n).map(move |k| (i, k)))
+                    .filter(|&(i, k)| state.exact_distance(i, k) < 1.0)
+                    .count();
+                assert!(pairs.len() >= expected);
+                let mut active = vec![true; n];
+                for removed in (1..n).rev().step_by(3) {
+                    let kept = (rng.next() as usize) % removed;
+                    if !active[kept] || !active[removed] {
+                        continue;
+                    }
+                    active[removed] = false;
+                    let mut fresh = Vec::new();
+                    state.merge(kept, removed, &active, &mut fresh);
+                    for &(k, c) in &fresh {
+                        let d = state.exact_distance(kept, k as usize);
+                        assert!(
+                            c.d <= d,
+                            "case {case}: merged ({kept}, {k}) bound {} > {d}",
+                            c.d
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn portable_kernels_give_the_reference_result() {
+        let mut rng = Xorshift(7);
+        for case in 0..30 {
+            let (n, m) = (
+                2 + (rng.next() % 80) as usize,
+                1 + (rng.next() % 200) as usize,
+            );
+            let p = random_matrix(&mut rng, n, m, [0.1, 0.4, 0.9][case % 3]);
+            let mut state = ContinuousState::new(&p);
+            state.avx2 = false;
+            assert_eq!(
+                agglomerate(state, 0),
+                reference::t_linkage(&p, 0),
+                "case {case}"
+            );
+        }
+    }
+
+    #[test]
+    fn exact_dot_is_the_ordered_sum() {
+        let mut rng = Xorshift(3);
+        let p = random_matrix(&mut rng, 2, 500, 0.5);
+        let (pi, pv) = p.row_support(0);
+        let (qi, qv) = p.row_support(1);
+        assert_eq!(
+            exact_dot(pi, pv, qi, qv).to_bits(),
+            crate::ordered_dot(&p.row(0), &p.row(1)).to_bits()
+        );
+    }
+}
