@@ -1,5 +1,15 @@
 //! The semi-calibrated T-Linkage pipeline (Algorithm 1) as a library, and the
 //! evaluation harness behind the `sctl` binary.
 
+pub mod compare;
+pub mod config;
+pub mod dataset;
+pub mod evaluate;
+pub mod experiment;
 pub mod metrics;
+pub mod output;
+pub mod pipeline;
+pub mod plots;
+pub mod report;
+pub mod sweep;
 pub mod wilcoxon;

@@ -15,6 +15,14 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Run an experiment: every scene x every sweep combination, into results/NAME/.
+    Run(cli::run::Args),
+    /// Segment one pair of your own matches and write one label per match.
+    Segment(cli::segment::Args),
+    /// Paired comparison of two runs on their common scenes (means, wins, Wilcoxon).
+    Compare(cli::compare::Args),
+    /// Combine the directories of `sctl run --shard` into one run directory.
+    Merge(cli::merge::Args),
     /// Focal lengths from fundamental matrices (Bougnoux and the robust iterative solver).
     Focal(cli::focal::Args),
     /// T-Linkage (or J-Linkage) clustering of a preference matrix read from CSV.
@@ -32,6 +40,10 @@ enum Command {
 fn main() -> std::process::ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
+        Command::Run(args) => cli::run::run(args),
+        Command::Segment(args) => cli::segment::run(args),
+        Command::Compare(args) => cli::compare::run(args),
+        Command::Merge(args) => cli::merge::run(args),
         Command::Focal(args) => cli::focal::run(args),
         Command::Tlinkage(args) => cli::tlinkage::run(args),
         Command::Inspect(args) => cli::inspect::run(args),

@@ -1,8 +1,12 @@
 //! One module per `sctl` subcommand: its clap `Args` and its `run` function.
 
+pub mod compare;
 pub mod focal;
 pub mod inspect;
+pub mod merge;
 pub mod metrics;
+pub mod run;
+pub mod segment;
 pub mod synth;
 pub mod tlinkage;
 pub mod wilcoxon;

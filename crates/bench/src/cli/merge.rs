@@ -1,0 +1,28 @@
+//! `sctl merge DIR...`: combines the run directories of `sctl run --shard`
+//! into the files a single run writes.
+
+use anyhow::Result;
+use std::path::PathBuf;
+
+/// Options of `sctl merge`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Shard run directories (each with config.toml, per_scene.csv, timings.csv).
+    #[arg(required = true, value_name = "DIR")]
+    pub dirs: Vec<PathBuf>,
+    /// Output directory [default: results/NAME].
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+}
+
+/// Merges and prints the summary table.
+pub fn run(args: Args) -> Result<()> {
+    let (out, summary) = bench::experiment::merge(&args.dirs, args.out.as_deref())?;
+    print!("{summary}");
+    println!(
+        "merged {} directories into {}",
+        args.dirs.len(),
+        out.display()
+    );
+    Ok(())
+}

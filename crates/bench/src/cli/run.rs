@@ -1,0 +1,92 @@
+//! `sctl run CONFIG.toml`: runs an experiment (every scene × every sweep
+//! combination) into a run directory.
+
+use anyhow::{Context, Result};
+use bench::config::{ExperimentConfig, CONFIG_KEYS_HELP};
+use bench::dataset::load_scenes;
+use bench::evaluate::PipelineEvaluator;
+use bench::experiment::{default_out_dir, run_experiment, thread_pool, RunOptions, Shard};
+use std::io::IsTerminal;
+use std::path::PathBuf;
+
+/// Options of `sctl run`.
+#[derive(clap::Args)]
+#[command(after_long_help = CONFIG_KEYS_HELP)]
+pub struct Args {
+    /// The experiment file (TOML; every key is listed under --help).
+    pub config: PathBuf,
+    /// Run directory [default: results/NAME, or results/NAME/shard-K-of-N with --shard].
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Worker threads [default: every core].
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
+    pub threads: Option<u16>,
+    /// Run only part K of N of the (scene, combination) units: those whose
+    /// number is K-1 modulo N. Combine the parts with `sctl merge`.
+    #[arg(long, value_name = "K/N")]
+    pub shard: Option<Shard>,
+    /// Keep the units already in the run directory's per_scene.csv and run
+    /// the others (the configuration must be the same).
+    #[arg(long)]
+    pub resume: bool,
+    /// Data root [default: $SCTL_DATA_ROOT, else the config's data_root, else datasets/].
+    #[arg(long, value_name = "DIR")]
+    pub data_root: Option<PathBuf>,
+    /// No progress bar.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+/// Runs the experiment and prints the summary table.
+pub fn run(args: Args) -> Result<()> {
+    let config = ExperimentConfig::load(&args.config)?;
+    let threads = match args.threads {
+        Some(t) => usize::from(t),
+        None => std::thread::available_parallelism().map_or(1, |n| n.get()),
+    };
+    let images = config.plots.enabled && config.plots.per_scene;
+    let scenes = thread_pool(threads)?
+        .install(|| load_scenes(&config.dataset, args.data_root.as_deref(), images))
+        .with_context(|| format!("{}: [dataset]", args.config.display()))?;
+    let out_dir = args
+        .out
+        .clone()
+        .unwrap_or_else(|| default_out_dir(&config.name, args.shard));
+    let evaluator = PipelineEvaluator::new(scenes);
+    let options = RunOptions {
+        out_dir: out_dir.clone(),
+        threads,
+        shard: args.shard,
+        resume: args.resume,
+        progress: !args.quiet && std::io::stderr().is_terminal(),
+    };
+    eprintln!(
+        "sctl run: {} — {} scenes, {} thread(s), output in {}",
+        config.name,
+        evaluator.scenes().len(),
+        threads,
+        out_dir.display()
+    );
+    let outcome = run_experiment(&config, &evaluator, &options)?;
+    print!("{}", outcome.summary);
+    println!(
+        "{} units evaluated, {} already done; {:.1} s wall; results in {}",
+        outcome.evaluated,
+        outcome.skipped,
+        outcome.wall_seconds,
+        out_dir.display()
+    );
+    if config.plots.enabled && args.shard.is_none() {
+        println!(
+            "figures in {}",
+            out_dir.join(bench::output::PLOTS_DIR).display()
+        );
+    }
+    if let Some(shard) = args.shard {
+        println!(
+            "shard {}/{} done: combine the shard directories with `sctl merge`",
+            shard.index, shard.count
+        );
+    }
+    Ok(())
+}

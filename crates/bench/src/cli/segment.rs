@@ -1,0 +1,177 @@
+//! `sctl segment --matches FILE`: segments one pair of the user's own
+//! matches and writes one label per input row (−1 = outlier), optionally
+//! with a figure of the clusters over the two images.
+
+use anyhow::{bail, Context, Result};
+use bench::config::PipelineConfig;
+use bench::dataset::load_match_file;
+use bench::evaluate::{ground_truth_models, scene_result};
+use bench::pipeline::segment;
+use bench::plots::{clusters_over_images, PlotFormat};
+use image::{ImageFormat, ImageReader, RgbImage};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// Options of `sctl segment`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Matches: CSV with header `x1,y1,x2,y2[,label]`, or `.txt` lines
+    /// `x1 y1 x2 y2 [label]` (pixels; label 0 = outlier, used for metrics).
+    #[arg(long, value_name = "FILE")]
+    pub matches: PathBuf,
+    /// Image width in pixels [default: from the sidecar FILE.toml].
+    #[arg(long, value_name = "W", requires = "height")]
+    pub width: Option<u32>,
+    /// Image height in pixels [default: from the sidecar FILE.toml].
+    #[arg(long, value_name = "H", requires = "width")]
+    pub height: Option<u32>,
+    /// Parameters: a TOML file with a `[pipeline]` table (an experiment file
+    /// works too) [default: thesis Table 1].
+    #[arg(long, value_name = "FILE")]
+    pub config: Option<PathBuf>,
+    /// Write the labels here, one per input row [default: stdout, summary on stderr].
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+    /// Worker threads [default: every core].
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
+    pub threads: Option<u16>,
+    /// Draw the clusters over both images (outliers as grey crosses) into
+    /// this file: `.png` or `.svg`. Without --image1/--image2 the points are
+    /// drawn on blank canvases of the image size.
+    #[arg(long, value_name = "FILE")]
+    pub plot: Option<PathBuf>,
+    /// First image (PNG, W x H pixels), drawn under the clusters of --plot.
+    #[arg(long, value_name = "FILE", requires_all = ["image2", "plot"])]
+    pub image1: Option<PathBuf>,
+    /// Second image (PNG, W x H pixels), drawn under the clusters of --plot.
+    #[arg(long, value_name = "FILE", requires_all = ["image1", "plot"])]
+    pub image2: Option<PathBuf>,
+}
+
+/// Reads a PNG image as RGB and checks that it is `size` pixels; any other
+/// format, an unreadable file or another size is an error naming the file.
+fn load_png(path: &Path, size: (u32, u32)) -> Result<RgbImage> {
+    let reader = ImageReader::open(path)
+        .with_context(|| format!("{}: cannot open the image", path.display()))?
+        .with_guessed_format()
+        .with_context(|| format!("{}: cannot read the image", path.display()))?;
+    match reader.format() {
+        Some(ImageFormat::Png) => {}
+        Some(other) => bail!(
+            "{}: {} images are not supported: give a PNG image",
+            path.display(),
+            format!("{other:?}").to_uppercase()
+        ),
+        None => bail!("{}: not a PNG image", path.display()),
+    }
+    let image = reader
+        .decode()
+        .with_context(|| format!("{}: cannot decode the PNG image", path.display()))?
+        .to_rgb8();
+    if image.dimensions() != size {
+        bail!(
+            "{}: the image is {} x {} pixels but the matches are for {} x {} (--width/--height)",
+            path.display(),
+            image.width(),
+            image.height(),
+            size.0,
+            size.1
+        );
+    }
+    Ok(image)
+}
+
+/// Segments the matches, writes the labels and prints a summary.
+pub fn run(args: Args) -> Result<()> {
+    let config = match &args.config {
+        Some(path) => PipelineConfig::load(path)?,
+        None => PipelineConfig::default(),
+    };
+    let size = args.width.zip(args.height);
+    if let Some(plot) = &args.plot {
+        PlotFormat::from_path(plot)?;
+    }
+    let scene = load_match_file(&args.matches, size)?;
+    let images = match (&args.image1, &args.image2) {
+        (Some(a), Some(b)) => Some((
+            load_png(a, scene.image_size)?,
+            load_png(b, scene.image_size)?,
+        )),
+        _ => None,
+    };
+    let threads = args.threads.map_or(0, usize::from);
+    let segmentation = bench::experiment::thread_pool(threads)?
+        .install(|| segment(&scene, &config))
+        .with_context(|| args.matches.display().to_string())?;
+    let result = scene_result(&scene, &segmentation, &ground_truth_models(&scene))?;
+
+    let labels: String = segmentation.labels.iter().fold(String::new(), |mut s, l| {
+        let _ = writeln!(s, "{l}");
+        s
+    });
+    let mut summary = format!(
+        "{}: {} matches, {} motion(s) found, {} outliers; hypotheses kept {} of {} generated ({} refined)",
+        scene.name,
+        scene.len(),
+        result.motions,
+        result.outliers,
+        result.hypotheses.kept,
+        result.hypotheses.generated,
+        result.hypotheses.refined,
+    );
+    for c in &segmentation.clusters {
+        let _ = write!(summary, "\n  motion {}: {} matches", c.label, c.size);
+    }
+    match result.f_peak {
+        Some(f) => {
+            let _ = write!(
+                summary,
+                "\n  f_peak {f:.1} px (focal prior {:.0} px)",
+                scene.focal_prior()
+            );
+        }
+        None => summary.push_str("\n  f_peak: none (baseline)"),
+    }
+    if let Some(m) = &result.metrics {
+        let _ = write!(
+            summary,
+            "\n  against the file's labels: ME {:.2} %, FNR {:.2} %, PUR {:.2} %, ARI {:.4}, NMI {:.4}",
+            100.0 * m.me,
+            100.0 * m.fnr,
+            100.0 * m.pur,
+            m.ari,
+            m.nmi
+        );
+    }
+    if result.status != "ok" {
+        let _ = write!(summary, "\n  note: {}", result.status);
+    }
+    if let Some(plot) = &args.plot {
+        let title = format!(
+            "{}: {} motion(s), {} outliers",
+            scene.name, result.motions, result.outliers
+        );
+        clusters_over_images(
+            scene.image_size,
+            images.as_ref().map(|(a, b)| (a, b)),
+            &scene.points1,
+            &scene.points2,
+            &segmentation.labels,
+            &title,
+            plot,
+        )?;
+        let _ = write!(summary, "\n  clusters drawn in {}", plot.display());
+    }
+    match &args.out {
+        Some(path) => {
+            std::fs::write(path, labels)
+                .with_context(|| format!("{}: cannot write", path.display()))?;
+            println!("{summary}\n  labels written to {}", path.display());
+        }
+        None => {
+            print!("{labels}");
+            eprintln!("{summary}");
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,212 @@
+//! The per-scene evaluation of `sctl run`: [`segment`] followed by the
+//! metrics of method.md ("Metrics") against the scene's ground truth, and
+//! the per-scene figures ([`draw_scene_plots`]).
+
+use crate::config::{Method, PipelineConfig};
+use crate::experiment::{Evaluator, ScenePlots};
+use crate::metrics::{frob_score, ClusteringMetrics};
+use crate::output::{file_safe, SceneResult, StageTimings};
+use crate::pipeline::{fit_cluster, segment, Segmentation};
+use crate::plots::{clusters_over_images, focal_kde, FocalKdePlot};
+use anyhow::Result;
+use datasets::Scene;
+use geometry::Correspondences;
+use nalgebra::Matrix3;
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+/// File-name suffix of the focal KDE figure of a scene.
+pub const FOCAL_KDE_SUFFIX: &str = "focal_kde";
+/// File-name suffix of the clusters figure of a scene.
+pub const CLUSTERS_SUFFIX: &str = "clusters";
+
+/// The values the focal consensus of Algorithm 1 step 6 was computed on:
+/// `f_avg = (f1 + f2) / 2` of every hypothesis with estimated focals that
+/// passes the local test `|f1 − f2| / f_avg < τ_diff` (Eq. 36), in
+/// hypothesis order. Empty for the baseline (no focals are estimated).
+pub fn kde_values(segmentation: &Segmentation, tau_diff: f64) -> Vec<f64> {
+    segmentation
+        .hypotheses
+        .iter()
+        .filter_map(|h| h.focals)
+        .filter(|&(f1, f2)| focal::passes_local_test(f1, f2, tau_diff))
+        .map(|(f1, f2)| 0.5 * (f1 + f2))
+        .collect()
+}
+
+/// Draws the figures of one segmented scene into `plots.dir`, once per
+/// format, and returns the files written:
+///
+/// - `<scene>_clusters`: the segmentation's clusters over both images
+///   (Figs. 11–12), or over blank canvases of the image size when the scene
+///   has no images;
+/// - `<scene>_focal_kde`: for the semical method when a consensus was
+///   computed, the KDE of the [`kde_values`] with f_peak, the band
+///   `f_peak (1 ± τ_range)` (Eq. 37) and the true focal when known (Fig. 8).
+///
+/// `<scene>` is the scene name made [`file_safe`] (`2/0900` → `2_0900`).
+pub fn draw_scene_plots(
+    scene: &Scene,
+    segmentation: &Segmentation,
+    pipeline: &PipelineConfig,
+    plots: &ScenePlots,
+) -> Result<Vec<PathBuf>> {
+    let stem = file_safe(&scene.name);
+    let mut written = Vec::new();
+    let outliers = segmentation.labels.iter().filter(|&&l| l < 0).count();
+    let clusters_title = format!(
+        "{} ({}): {} motion(s), {} outliers",
+        scene.name,
+        plots.label,
+        segmentation.clusters.len(),
+        outliers
+    );
+    let kde_title = format!("{} ({})", scene.name, plots.label);
+    let values = kde_values(segmentation, pipeline.tau_diff);
+    for format in &plots.formats {
+        let ext = format.extension();
+        let path = plots.dir.join(format!("{stem}_{CLUSTERS_SUFFIX}.{ext}"));
+        clusters_over_images(
+            scene.image_size,
+            scene.images.as_ref().map(|(a, b)| (a, b)),
+            &scene.points1,
+            &scene.points2,
+            &segmentation.labels,
+            &clusters_title,
+            &path,
+        )?;
+        written.push(path);
+        if pipeline.method != Method::Semical {
+            continue;
+        }
+        if let Some(consensus) = &segmentation.consensus {
+            let path = plots.dir.join(format!("{stem}_{FOCAL_KDE_SUFFIX}.{ext}"));
+            let plot = FocalKdePlot::from_consensus(
+                &values,
+                consensus,
+                pipeline.tau_range,
+                scene.true_focal,
+                &kde_title,
+            );
+            focal_kde(&plot, &path)?;
+            written.push(path);
+        }
+    }
+    Ok(written)
+}
+
+/// The 8-point F of each ground-truth motion with at least 8 points, in
+/// label order, in principal-point-centred coordinates (the FROB side of
+/// the truth, Eq. 45).
+pub fn ground_truth_models(scene: &Scene) -> Vec<Matrix3<f64>> {
+    let Some(labels) = &scene.labels else {
+        return Vec::new();
+    };
+    let Ok(points) = Correspondences::new(&scene.points1, &scene.points2) else {
+        return Vec::new();
+    };
+    let points = points.shifted(scene.principal_point, scene.principal_point);
+    let mut motions: BTreeMap<i32, Vec<usize>> = BTreeMap::new();
+    for (i, &l) in labels.iter().enumerate() {
+        if l > 0 {
+            motions.entry(l).or_default().push(i);
+        }
+    }
+    motions
+        .values()
+        .filter_map(|idx| fit_cluster(&points, idx))
+        .collect()
+}
+
+/// The `per_scene.csv` record of a segmentation of `scene`.
+pub fn scene_result(
+    scene: &Scene,
+    segmentation: &Segmentation,
+    gt_models: &[Matrix3<f64>],
+) -> Result<SceneResult> {
+    let metrics = match &scene.labels {
+        Some(gt) => Some(ClusteringMetrics::compute(&segmentation.labels, gt)?),
+        None => None,
+    };
+    let status = match (&segmentation.degenerate, segmentation.consensus_fallback) {
+        (Some(reason), _) => reason.clone(),
+        (None, true) => "ok (focal filter kept all)".to_string(),
+        (None, false) => "ok".to_string(),
+    };
+    Ok(SceneResult {
+        n: scene.len(),
+        metrics,
+        frob: frob_score(&segmentation.cluster_fundamentals(), gt_models),
+        gt_motions: scene.labels.as_ref().map(|_| scene.num_motions()),
+        gt_outliers: scene.labels.as_ref().map(|_| scene.num_outliers()),
+        motions: segmentation.clusters.len(),
+        outliers: segmentation.labels.iter().filter(|&&l| l < 0).count(),
+        hypotheses: segmentation.counts,
+        f_peak: segmentation.f_peak(),
+        f_true: scene.true_focal,
+        status,
+    })
+}
+
+/// Runs Algorithm 1 on in-memory scenes and scores each segmentation.
+pub struct PipelineEvaluator {
+    scenes: Vec<Scene>,
+    gt_models: Vec<Vec<Matrix3<f64>>>,
+}
+
+impl PipelineEvaluator {
+    /// Prepares the scenes (and the ground-truth fits FROB compares with).
+    pub fn new(scenes: Vec<Scene>) -> Self {
+        let gt_models = scenes.iter().map(ground_truth_models).collect();
+        Self { scenes, gt_models }
+    }
+
+    /// The scenes.
+    pub fn scenes(&self) -> &[Scene] {
+        &self.scenes
+    }
+}
+
+impl Evaluator for PipelineEvaluator {
+    fn scene_names(&self) -> Vec<String> {
+        self.scenes.iter().map(|s| s.name.clone()).collect()
+    }
+
+    fn evaluate(
+        &self,
+        index: usize,
+        pipeline: &PipelineConfig,
+        plots: Option<&ScenePlots>,
+    ) -> Result<(SceneResult, StageTimings)> {
+        let scene = &self.scenes[index];
+        let segmentation = match segment(scene, pipeline) {
+            Ok(s) => s,
+            Err(err) => {
+                // No hypothesis at all: every point is an outlier, and the
+                // row says why.
+                let mut result = scene_result(scene, &all_outliers(scene.len()), &[])?;
+                result.status = err.to_string();
+                return Ok((result, StageTimings::default()));
+            }
+        };
+        let result = scene_result(scene, &segmentation, &self.gt_models[index])?;
+        if let Some(plots) = plots {
+            draw_scene_plots(scene, &segmentation, pipeline, plots)?;
+        }
+        Ok((result, segmentation.timings))
+    }
+}
+
+fn all_outliers(n: usize) -> Segmentation {
+    Segmentation {
+        labels: vec![-1; n],
+        counts: Default::default(),
+        hypotheses: Vec::new(),
+        consensus: None,
+        consensus_fallback: false,
+        clusters: Vec::new(),
+        clusters_before_filter: 0,
+        timings: StageTimings::default(),
+        degenerate: Some("no hypothesis".into()),
+    }
+}

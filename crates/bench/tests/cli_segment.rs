@@ -1,0 +1,278 @@
+//! `sctl segment` on a user's match file.
+
+use assert_cmd::Command;
+use bench::metrics::ClusteringMetrics;
+use datasets::synthetic::{generate_hopef_scene, Preset};
+use predicates::prelude::*;
+use std::fmt::Write as _;
+use std::path::Path;
+
+fn sctl() -> Command {
+    Command::cargo_bin("sctl").unwrap()
+}
+
+/// Writes a synthetic two-motion scene as `x1,y1,x2,y2,label` and returns
+/// its ground-truth labels.
+fn write_matches(path: &Path) -> Vec<i32> {
+    let scene = generate_hopef_scene(&Preset::Quick.params(), 1, 2, 900)
+        .unwrap()
+        .scene;
+    let labels = scene.labels.clone().unwrap();
+    let mut text = String::from("x1,y1,x2,y2,label\n");
+    for ((p, q), label) in scene.points1.iter().zip(&scene.points2).zip(&labels) {
+        let _ = writeln!(text, "{},{},{},{},{label}", p[0], p[1], q[0], q[1]);
+    }
+    std::fs::write(path, text).unwrap();
+    assert_eq!(scene.image_size, (1024, 768));
+    labels
+}
+
+#[test]
+fn segments_a_match_file_and_writes_one_label_per_row() {
+    let dir = tempfile::tempdir().unwrap();
+    let matches = dir.path().join("pair.csv");
+    let truth = write_matches(&matches);
+    let params = dir.path().join("params.toml");
+    std::fs::write(&params, "[pipeline]\nnum_samples = 300\n").unwrap();
+    let out = dir.path().join("labels.txt");
+    sctl()
+        .arg("segment")
+        .arg("--matches")
+        .arg(&matches)
+        .args(["--width", "1024", "--height", "768", "--config"])
+        .arg(&params)
+        .arg("--out")
+        .arg(&out)
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("2 motion(s) found"))
+        .stdout(predicate::str::contains("f_peak"))
+        .stdout(predicate::str::contains("against the file's labels: ME"));
+    let labels: Vec<i32> = std::fs::read_to_string(&out)
+        .unwrap()
+        .lines()
+        .map(|l| l.parse().unwrap())
+        .collect();
+    assert_eq!(labels.len(), truth.len());
+    let m = ClusteringMetrics::compute(&labels, &truth).unwrap();
+    assert!(m.me < 0.05, "ME {}", m.me);
+
+    // Without --out the labels go to stdout, the summary to stderr; the
+    // image size may come from the sidecar.
+    std::fs::write(dir.path().join("pair.toml"), "width = 1024\nheight = 768\n").unwrap();
+    let output = sctl()
+        .arg("segment")
+        .arg("--matches")
+        .arg(&matches)
+        .arg("--config")
+        .arg(&params)
+        .args(["--threads", "1"])
+        .output()
+        .unwrap();
+    assert!(output.status.success());
+    let stdout: Vec<i32> = String::from_utf8(output.stdout)
+        .unwrap()
+        .lines()
+        .map(|l| l.parse().unwrap())
+        .collect();
+    assert_eq!(stdout, labels, "the same labels at 1 thread");
+    assert!(String::from_utf8(output.stderr)
+        .unwrap()
+        .contains("motion(s) found"));
+}
+
+#[test]
+fn bad_inputs_fail_with_the_file_and_the_problem() {
+    let dir = tempfile::tempdir().unwrap();
+    let matches = dir.path().join("pair.csv");
+    write_matches(&matches);
+    // No image size and no sidecar.
+    sctl()
+        .arg("segment")
+        .arg("--matches")
+        .arg(&matches)
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("pair.csv"));
+    // A coordinate that is not a number.
+    let broken = dir.path().join("broken.csv");
+    std::fs::write(&broken, "x1,y1,x2,y2\n1,2,3,4\n5,6,x,8\n").unwrap();
+    sctl()
+        .arg("segment")
+        .arg("--matches")
+        .arg(&broken)
+        .args(["--width", "640", "--height", "480"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("broken.csv").and(predicate::str::contains("x2")));
+    // A bad parameter file names its key.
+    let params = dir.path().join("params.toml");
+    std::fs::write(&params, "[pipeline]\nlinkage = \"k-linkage\"\n").unwrap();
+    sctl()
+        .arg("segment")
+        .arg("--matches")
+        .arg(&matches)
+        .args(["--width", "1024", "--height", "768", "--config"])
+        .arg(&params)
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains(
+            "params.toml:2: pipeline.linkage: unknown variant `k-linkage`",
+        ));
+    // --width needs --height.
+    sctl()
+        .arg("segment")
+        .arg("--matches")
+        .arg(&matches)
+        .args(["--width", "1024"])
+        .assert()
+        .failure();
+}
+
+/// A `width × height` PNG of one colour.
+fn write_png(path: &Path, size: (u32, u32), colour: [u8; 3]) {
+    image::RgbImage::from_pixel(size.0, size.1, image::Rgb(colour))
+        .save_with_format(path, image::ImageFormat::Png)
+        .unwrap();
+}
+
+fn count_pixels(path: &Path, colour: [u8; 3]) -> usize {
+    let image = image::open(path).unwrap().to_rgb8();
+    image.pixels().filter(|p| p.0 == colour).count()
+}
+
+#[test]
+fn plot_draws_the_clusters_over_the_images_or_blank_canvases() {
+    let dir = tempfile::tempdir().unwrap();
+    let matches = dir.path().join("pair.csv");
+    write_matches(&matches);
+    let params = dir.path().join("params.toml");
+    std::fs::write(&params, "[pipeline]\nnum_samples = 300\n").unwrap();
+    let segment = || {
+        let mut cmd = sctl();
+        cmd.arg("segment")
+            .arg("--matches")
+            .arg(&matches)
+            .args(["--width", "1024", "--height", "768", "--config"])
+            .arg(&params)
+            .arg("--out")
+            .arg(dir.path().join("labels.txt"));
+        cmd
+    };
+
+    let blank = dir.path().join("blank.png");
+    segment()
+        .arg("--plot")
+        .arg(&blank)
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("clusters drawn in"));
+    // Two 800 x 600 panels (the 1024 x 768 image scaled by 0.78125).
+    let figure = image::open(&blank).unwrap().to_rgb8();
+    assert!(figure.width() > 1600 && figure.height() > 600);
+    // Cluster 0's colour (the first palette entry) marks points.
+    let cluster0 = [31, 119, 180];
+    assert!(count_pixels(&blank, cluster0) > 100);
+
+    // Over the images: their colour fills most of both panels.
+    let teal = [10, 200, 150];
+    let (a, b) = (dir.path().join("a.png"), dir.path().join("b.png"));
+    write_png(&a, (1024, 768), teal);
+    write_png(&b, (1024, 768), teal);
+    let over = dir.path().join("over.png");
+    segment()
+        .arg("--plot")
+        .arg(&over)
+        .arg("--image1")
+        .arg(&a)
+        .arg("--image2")
+        .arg(&b)
+        .assert()
+        .success();
+    assert_eq!(count_pixels(&blank, teal), 0);
+    assert!(
+        count_pixels(&over, teal) > 2 * 800 * 600 * 8 / 10,
+        "the images are not under the points"
+    );
+    assert!(count_pixels(&over, cluster0) > 100);
+
+    // SVG by extension.
+    let svg = dir.path().join("clusters.svg");
+    segment().arg("--plot").arg(&svg).assert().success();
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.starts_with("<svg") && text.contains("motion(s)"));
+}
+
+#[test]
+fn bad_plot_arguments_name_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let matches = dir.path().join("pair.csv");
+    write_matches(&matches);
+    let good = dir.path().join("good.png");
+    write_png(&good, (1024, 768), [0, 0, 0]);
+    let segment = |image1: &Path, plot: &str| {
+        let mut cmd = sctl();
+        cmd.arg("segment")
+            .arg("--matches")
+            .arg(&matches)
+            .args(["--width", "1024", "--height", "768", "--plot"])
+            .arg(dir.path().join(plot))
+            .arg("--image1")
+            .arg(image1)
+            .arg("--image2")
+            .arg(&good);
+        cmd
+    };
+    let missing = dir.path().join("missing.png");
+    segment(&missing, "out.png")
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains(format!(
+            "{}: cannot open the image",
+            missing.display()
+        )));
+    let jpeg = dir.path().join("photo.jpg");
+    std::fs::write(
+        &jpeg,
+        b"\xff\xd8\xff\xe0\x00\x10JFIF\x00\x01\x01\x00\x00\x01\x00\x01\x00\x00",
+    )
+    .unwrap();
+    segment(&jpeg, "out.png")
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains(format!(
+            "{}: JPEG images are not supported: give a PNG image",
+            jpeg.display()
+        )));
+    let small = dir.path().join("small.png");
+    write_png(&small, (640, 480), [0, 0, 0]);
+    segment(&small, "out.png")
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains(format!(
+            "{}: the image is 640 x 480 pixels but the matches are for 1024 x 768",
+            small.display()
+        )));
+    let not_an_image = dir.path().join("text.png");
+    std::fs::write(&not_an_image, "hello").unwrap();
+    segment(&not_an_image, "out.png")
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains(not_an_image.display().to_string()));
+    // The figure's own format is checked before any work.
+    segment(&good, "out.pdf")
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("out.pdf: unsupported plot format"));
+    assert!(!dir.path().join("out.png").exists());
+    // Images need --plot and each other.
+    sctl()
+        .arg("segment")
+        .arg("--matches")
+        .arg(&matches)
+        .args(["--width", "1024", "--height", "768", "--image1"])
+        .arg(&good)
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("--image2"));
+}

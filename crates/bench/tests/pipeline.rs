@@ -1,0 +1,232 @@
+//! Algorithm 1 end to end on synthetic scenes of the `quick` preset.
+
+use bench::config::{EightPoint, FocalSolver, LocalTest, Method, OnFailure, PipelineConfig};
+use bench::metrics::ClusteringMetrics;
+use bench::pipeline::{segment, HypothesisStatus, PipelineError, Segmentation};
+use clustering::Linkage;
+use datasets::synthetic::{generate_hopef_scene, Preset};
+use datasets::Scene;
+
+fn quick_scene(category: u32, index: u32) -> Scene {
+    generate_hopef_scene(&Preset::Quick.params(), 1, category, index)
+        .unwrap()
+        .scene
+}
+
+fn config(method: Method) -> PipelineConfig {
+    PipelineConfig {
+        method,
+        num_samples: 300,
+        ..PipelineConfig::default()
+    }
+}
+
+fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+        .install(f)
+}
+
+fn me(scene: &Scene, seg: &Segmentation) -> f64 {
+    ClusteringMetrics::compute(&seg.labels, scene.labels.as_ref().unwrap())
+        .unwrap()
+        .me
+}
+
+#[test]
+fn three_synthetic_scenes_are_segmented_with_me_below_5_percent() {
+    for (category, index) in [(1, 900), (2, 900), (2, 901)] {
+        let scene = quick_scene(category, index);
+        for method in [Method::Baseline, Method::Semical] {
+            let seg = segment(&scene, &config(method)).unwrap();
+            let error = me(&scene, &seg);
+            assert!(error < 0.05, "{} {method:?}: ME {error}", scene.name);
+            assert_eq!(
+                seg.clusters.len(),
+                scene.num_motions(),
+                "{} {method:?}",
+                scene.name
+            );
+            assert_eq!(seg.counts.generated, 300);
+            assert_eq!(seg.hypotheses.len(), 300);
+            let kept = seg
+                .hypotheses
+                .iter()
+                .filter(|h| h.status == HypothesisStatus::Kept)
+                .count();
+            assert_eq!(kept, seg.counts.kept);
+            assert!(seg.counts.kept <= seg.counts.refined && seg.counts.refined <= 300);
+            match method {
+                Method::Baseline => {
+                    assert_eq!(seg.counts.kept, seg.counts.refined);
+                    assert!(seg.consensus.is_none());
+                    assert!(seg.hypotheses.iter().all(|h| h.focals.is_none()));
+                }
+                Method::Semical => {
+                    let c = seg.consensus.as_ref().unwrap();
+                    assert_eq!(c.density.len(), 512);
+                    // The consensus focal is near the true focal of the camera.
+                    let truth = scene.true_focal.unwrap();
+                    assert!(
+                        (c.f_peak - truth).abs() / truth < 0.3,
+                        "{} f_peak {} truth {truth}",
+                        scene.name,
+                        c.f_peak
+                    );
+                    // Every kept hypothesis passed the local test and lies in the band.
+                    for h in seg
+                        .hypotheses
+                        .iter()
+                        .filter(|h| h.status == HypothesisStatus::Kept)
+                    {
+                        let (f1, f2) = h.focals.unwrap();
+                        assert!(focal::passes_local_test(f1, f2, 0.05));
+                        assert!(focal::within_band((f1 + f2) / 2.0, c.f_peak, 0.2));
+                    }
+                }
+            }
+            // Each final cluster has its 8-point F, and it fits its points.
+            for cluster in &seg.clusters {
+                assert!(cluster.size >= 8);
+                assert!(cluster.f.is_some());
+            }
+        }
+    }
+}
+
+#[test]
+fn labels_do_not_depend_on_the_thread_count() {
+    let scene = quick_scene(2, 901);
+    for method in [Method::Baseline, Method::Semical] {
+        let one = in_pool(1, || segment(&scene, &config(method)).unwrap());
+        let two = in_pool(2, || segment(&scene, &config(method)).unwrap());
+        assert_eq!(one.labels, two.labels);
+        assert_eq!(one.hypotheses, two.hypotheses);
+        assert_eq!(one.consensus, two.consensus);
+        assert_eq!(one.clusters, two.clusters);
+    }
+    // Another seed draws other samples.
+    let a = segment(&scene, &config(Method::Baseline)).unwrap();
+    let b = segment(
+        &scene,
+        &PipelineConfig {
+            seed: 7,
+            ..config(Method::Baseline)
+        },
+    )
+    .unwrap();
+    assert_ne!(a.counts.refined, 0);
+    assert_ne!(a.hypotheses, b.hypotheses);
+}
+
+#[test]
+fn every_variant_runs_and_labels_every_point() {
+    let scene = quick_scene(2, 900);
+    let variants = [
+        PipelineConfig {
+            refine: false,
+            ..config(Method::Semical)
+        },
+        PipelineConfig {
+            eight_point: EightPoint::Plain,
+            ..config(Method::Semical)
+        },
+        PipelineConfig {
+            focal_solver: FocalSolver::Bougnoux,
+            ..config(Method::Semical)
+        },
+        PipelineConfig {
+            focal_solver: FocalSolver::Bougnoux,
+            focal_failure: OnFailure::Prior,
+            ..config(Method::Semical)
+        },
+        PipelineConfig {
+            local_test: LocalTest::ReferenceCode,
+            focal_failure: OnFailure::Prior,
+            truncate_focals: true,
+            ..config(Method::Semical)
+        },
+        PipelineConfig {
+            linkage: Linkage::JLinkage,
+            ..config(Method::Baseline)
+        },
+    ];
+    for v in variants {
+        let seg = segment(&scene, &v).unwrap();
+        assert_eq!(seg.labels.len(), scene.len());
+        let k = seg.clusters.len() as i32;
+        assert!(
+            seg.labels.iter().all(|&l| l == -1 || (0..k).contains(&l)),
+            "{v:?}"
+        );
+        if !v.refine {
+            // Raw minimal samples: nothing is lost to refinement.
+            assert!(seg
+                .hypotheses
+                .iter()
+                .all(|h| h.status != HypothesisStatus::RefineFailed));
+        }
+        if v.focal_failure == OnFailure::Prior {
+            assert_eq!(seg.counts.focal_failures, 0, "{v:?}");
+        }
+        if v.truncate_focals {
+            assert!(seg
+                .hypotheses
+                .iter()
+                .filter_map(|h| h.focals)
+                .all(|(f1, f2)| f1.fract() == 0.0 && f2.fract() == 0.0));
+        }
+    }
+}
+
+#[test]
+fn degenerate_input_is_reported_not_panicked_on() {
+    let mut scene = quick_scene(1, 900);
+    // All points on one line in both images: every 8-point system is rank-deficient.
+    let n = scene.len();
+    scene.points1 = (0..n).map(|i| [i as f64, 2.0 * i as f64]).collect();
+    scene.points2 = (0..n).map(|i| [i as f64 + 1.0, 2.0 * i as f64]).collect();
+    let seg = segment(&scene, &config(Method::Semical)).unwrap();
+    assert!(seg.labels.iter().all(|&l| l == -1));
+    assert!(
+        seg.degenerate.as_deref().unwrap().contains("degenerate"),
+        "{:?}",
+        seg.degenerate
+    );
+    assert_eq!(seg.counts.kept, 0);
+
+    let mut tiny = quick_scene(1, 900);
+    tiny.points1.truncate(7);
+    tiny.points2.truncate(7);
+    let err = segment(&tiny, &config(Method::Baseline)).unwrap_err();
+    assert!(
+        matches!(
+            err,
+            PipelineError::TooFewPoints {
+                n: 7,
+                needed: 8,
+                ..
+            }
+        ),
+        "{err}"
+    );
+
+    let mut nan = quick_scene(1, 900);
+    nan.points2[3][0] = f64::NAN;
+    let err = segment(&nan, &config(Method::Baseline))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("scene `1/0900`") && err.contains("index 3"),
+        "{err}"
+    );
+
+    let bad = PipelineConfig {
+        thr_px: -1.0,
+        ..config(Method::Baseline)
+    };
+    let err = segment(&quick_scene(1, 900), &bad).unwrap_err().to_string();
+    assert!(err.contains("`thr_px`"), "{err}");
+}
