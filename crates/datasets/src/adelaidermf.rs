@@ -37,20 +37,7 @@ pub const FUNDAMENTAL_SCENES: [&str; 19] = [
     "toycubecar",
 ];
 
-/// What to read besides the correspondences.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct LoadOptions {
-    /// Decode the image pair into [`Scene::images`]. The image size is read
-    /// either way.
-    pub images: bool,
-}
-
-impl Default for LoadOptions {
-    /// Images included.
-    fn default() -> Self {
-        Self { images: true }
-    }
-}
+pub use crate::scene::LoadOptions;
 
 /// A directory holding the AdelaideRMF `.mat` files (`<data root>/adelaidermf/F`).
 #[derive(Debug, Clone, PartialEq, Eq)]

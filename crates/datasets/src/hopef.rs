@@ -137,20 +137,7 @@ pub fn scene_name(category: u32, index: u32) -> String {
     format!("{category}/{index:04}")
 }
 
-/// What to read besides the correspondences.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct LoadOptions {
-    /// Decode `render0.png` / `render1.png` into [`Scene::images`] when they
-    /// exist. The image size is read from `render0.png` either way.
-    pub images: bool,
-}
-
-impl Default for LoadOptions {
-    /// Images included when present.
-    fn default() -> Self {
-        Self { images: true }
-    }
-}
+pub use crate::scene::LoadOptions;
 
 /// A HOPE-F dataset root (`<data root>/hopef`, or any directory in the same
 /// layout, such as the output of [`crate::synthetic::write_hopef_layout`]).

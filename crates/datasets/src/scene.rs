@@ -338,3 +338,20 @@ mod tests {
         );
     }
 }
+
+/// What a loader reads besides the correspondences (shared by every loader
+/// that can find images next to the matches).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct LoadOptions {
+    /// Decode the image pair into [`Scene::images`] when the source has one
+    /// (AdelaideRMF's `img1`/`img2`, HOPE-F's `render0.png`/`render1.png`).
+    /// The image size is read either way.
+    pub images: bool,
+}
+
+impl Default for LoadOptions {
+    /// Images included when present.
+    fn default() -> Self {
+        Self { images: true }
+    }
+}
