@@ -69,6 +69,19 @@ fn epipolar_terms(f: &Matrix3<f64>, p1: [f64; 2], p2: [f64; 2]) -> (f64, f64, f6
     (e, a * a + b * b, c * c + d * d)
 }
 
+/// `(e, a² + b² + c² + d²)` for one match, the terms of the batch loops
+/// (the gradient summed in that order, as both batch forms need it).
+#[inline(always)]
+fn batch_terms(f: &Matrix3<f64>, x1: f64, y1: f64, x2: f64, y2: f64) -> (f64, f64) {
+    let a = f[(0, 0)] * x1 + f[(0, 1)] * y1 + f[(0, 2)];
+    let b = f[(1, 0)] * x1 + f[(1, 1)] * y1 + f[(1, 2)];
+    let c3 = f[(2, 0)] * x1 + f[(2, 1)] * y1 + f[(2, 2)];
+    let c = f[(0, 0)] * x2 + f[(1, 0)] * y2 + f[(2, 0)];
+    let d = f[(0, 1)] * x2 + f[(1, 1)] * y2 + f[(2, 1)];
+    let e = x2 * a + y2 * b + c3;
+    (e, a * a + b * b + c * c + d * d)
+}
+
 /// Squared Sampson distance (thesis Eq. 23), in px²:
 /// `e² / (a² + b² + c² + d²)`.
 ///
@@ -137,18 +150,9 @@ pub fn sampson_distances_squared(f: &Matrix3<f64>, points: &Correspondences, out
     let f = rescale_power_of_two(f);
     let (x1, y1, x2, y2) = points.columns();
     let n = out.len().min(x1.len());
-    let (f00, f01, f02) = (f[(0, 0)], f[(0, 1)], f[(0, 2)]);
-    let (f10, f11, f12) = (f[(1, 0)], f[(1, 1)], f[(1, 2)]);
-    let (f20, f21, f22) = (f[(2, 0)], f[(2, 1)], f[(2, 2)]);
     let (x1, y1, x2, y2, out) = (&x1[..n], &y1[..n], &x2[..n], &y2[..n], &mut out[..n]);
     for i in 0..n {
-        let a = f00 * x1[i] + f01 * y1[i] + f02;
-        let b = f10 * x1[i] + f11 * y1[i] + f12;
-        let c3 = f20 * x1[i] + f21 * y1[i] + f22;
-        let c = f00 * x2[i] + f10 * y2[i] + f20;
-        let d = f01 * x2[i] + f11 * y2[i] + f21;
-        let e = x2[i] * a + y2[i] * b + c3;
-        let g = a * a + b * b + c * c + d * d;
+        let (e, g) = batch_terms(&f, x1[i], y1[i], x2[i], y2[i]);
         // A compare-and-blend: vectorises.
         out[i] = ratio(e, e * e, g);
     }
@@ -173,18 +177,9 @@ pub fn sampson_residuals_signed(f: &Matrix3<f64>, points: &Correspondences, out:
     let f = rescale_power_of_two(f);
     let (x1, y1, x2, y2) = points.columns();
     let n = out.len().min(x1.len());
-    let (f00, f01, f02) = (f[(0, 0)], f[(0, 1)], f[(0, 2)]);
-    let (f10, f11, f12) = (f[(1, 0)], f[(1, 1)], f[(1, 2)]);
-    let (f20, f21, f22) = (f[(2, 0)], f[(2, 1)], f[(2, 2)]);
     let (x1, y1, x2, y2, out) = (&x1[..n], &y1[..n], &x2[..n], &y2[..n], &mut out[..n]);
     for i in 0..n {
-        let a = f00 * x1[i] + f01 * y1[i] + f02;
-        let b = f10 * x1[i] + f11 * y1[i] + f12;
-        let c3 = f20 * x1[i] + f21 * y1[i] + f22;
-        let c = f00 * x2[i] + f10 * y2[i] + f20;
-        let d = f01 * x2[i] + f11 * y2[i] + f21;
-        let e = x2[i] * a + y2[i] * b + c3;
-        let g = a * a + b * b + c * c + d * d;
+        let (e, g) = batch_terms(&f, x1[i], y1[i], x2[i], y2[i]);
         out[i] = ratio(e, e, g.sqrt());
     }
 }
