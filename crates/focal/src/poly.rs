@@ -106,13 +106,12 @@ impl Quartic2 {
             p1[k] = p1[k - 1] * t1;
             p2[k] = p2[k - 1] * t2;
         }
+        // Straight-line sums (fully unrolled): a zero coefficient adds an
+        // exact zero, so skipping none of them changes no sum.
         let (mut v, mut d1, mut d2, mut mag) = (0.0, 0.0, 0.0, 0.0);
         for i in 0..5 {
             for j in 0..5 - i {
                 let c = self.0[i][j];
-                if c == 0.0 {
-                    continue;
-                }
                 let term = c * p1[i] * p2[j];
                 v += term;
                 mag += term.abs();
