@@ -351,11 +351,207 @@ pub(crate) fn aberth_roots(
     count + deg
 }
 
+/// Aberth–Ehrlich iterations on `roots` for the polynomial with ascending
+/// coefficients `c` (nonzero ends): whole-set (Jacobi) sweeps, written so
+/// that the compiler vectorises them across roots, while more than
+/// [`JACOBI_MIN_MOVING`] roots are still moving, then one-root-at-a-time
+/// (Gauss–Seidel) sweeps of [`aberth_gauss_seidel`] for the last few.
+/// Returns true when every approximation met the backward-error test
+/// `|p(z)| <= 4 eps sum |c_k| |z|^k`.
+fn aberth_iterate(c: &[f64], roots: &mut [C64], max_iter: usize) -> bool {
+    let deg = c.len() - 1;
+    if deg <= JACOBI_MIN_MOVING + 1 {
+        return aberth_gauss_seidel(c, roots, max_iter);
+    }
+    let mut state = AberthState::new(c, roots);
+    for _ in 0..max_iter {
+        let moving = state.jacobi_sweep_dispatch();
+        if moving == 0 {
+            state.store(roots);
+            return true;
+        }
+        if moving <= JACOBI_MIN_MOVING {
+            break;
+        }
+    }
+    state.store(roots);
+    aberth_gauss_seidel(c, roots, max_iter)
+}
+
+/// Below this many unconverged roots, [`aberth_iterate`] switches from
+/// whole-set sweeps to one-root updates.
+const JACOBI_MIN_MOVING: usize = 3;
+
+/// Coefficients and root approximations of [`aberth_iterate`] in
+/// structure-of-arrays form, padded to [`MAX_DEGREE`] lanes.
+struct AberthState {
+    deg: usize,
+    c: [f64; MAX_DEGREE + 1],
+    abs_c: [f64; MAX_DEGREE + 1],
+    re: [f64; MAX_DEGREE],
+    im: [f64; MAX_DEGREE],
+    converged: [bool; MAX_DEGREE],
+    avx2: bool,
+}
+
+impl AberthState {
+    fn new(c: &[f64], roots: &[C64]) -> Self {
+        let deg = c.len() - 1;
+        let mut state = Self {
+            deg,
+            c: [0.0; MAX_DEGREE + 1],
+            abs_c: [0.0; MAX_DEGREE + 1],
+            re: [0.0; MAX_DEGREE],
+            im: [0.0; MAX_DEGREE],
+            converged: [false; MAX_DEGREE],
+            avx2: avx2_available(),
+        };
+        for (k, &v) in c.iter().enumerate() {
+            state.c[k] = v;
+            state.abs_c[k] = v.abs();
+        }
+        for (i, z) in roots.iter().enumerate().take(deg) {
+            state.re[i] = z.re;
+            state.im[i] = z.im;
+        }
+        state
+    }
+
+    fn store(&self, roots: &mut [C64]) {
+        for (i, z) in roots.iter_mut().enumerate().take(self.deg) {
+            *z = C64::new(self.re[i], self.im[i]);
+        }
+    }
+
+    fn jacobi_sweep_dispatch(&mut self) -> usize {
+        #[cfg(target_arch = "x86_64")]
+        if self.avx2 {
+            // SAFETY: `avx2` is set only when the CPU supports AVX2.
+            return unsafe { self.jacobi_sweep_avx2() };
+        }
+        self.jacobi_sweep()
+    }
+
+    /// [`AberthState::jacobi_sweep`] compiled for AVX2: the same operations
+    /// in the same order (no fused multiply-add), so the same results.
+    ///
+    /// # Safety
+    /// The CPU must support AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn jacobi_sweep_avx2(&mut self) -> usize {
+        self.jacobi_sweep()
+    }
+
+    /// One Aberth step for every unconverged root from the same current
+    /// approximations: `z_i <- z_i - w_i`, `w_i = r_i / (1 - r_i S_i)` with
+    /// `r_i = p(z_i) / p'(z_i)` and `S_i = sum_{j != i} 1 / (z_i - z_j)`.
+    /// Roots that pass the backward-error test are marked and stay fixed;
+    /// returns how many did not.
+    #[inline(always)]
+    fn jacobi_sweep(&mut self) -> usize {
+        const N: usize = MAX_DEGREE;
+        let deg = self.deg;
+        let tol = 4.0 * f64::EPSILON;
+        let (re, im) = (self.re, self.im);
+        // Horner for p, p' and the bound sum |c_k| |z|^k at every lane.
+        let mut pr = [self.c[deg]; N];
+        let mut pi = [0.0; N];
+        let mut dr = [0.0; N];
+        let mut di = [0.0; N];
+        let mut bound = [self.abs_c[deg]; N];
+        let mut az = [0.0; N];
+        for i in 0..N {
+            az[i] = (re[i] * re[i] + im[i] * im[i]).sqrt();
+        }
+        for k in (0..deg).rev() {
+            let (ck, ak) = (self.c[k], self.abs_c[k]);
+            for i in 0..N {
+                let ndr = dr[i] * re[i] - di[i] * im[i] + pr[i];
+                let ndi = dr[i] * im[i] + di[i] * re[i] + pi[i];
+                let npr = pr[i] * re[i] - pi[i] * im[i] + ck;
+                let npi = pr[i] * im[i] + pi[i] * re[i];
+                dr[i] = ndr;
+                di[i] = ndi;
+                pr[i] = npr;
+                pi[i] = npi;
+                bound[i] = bound[i] * az[i] + ak;
+            }
+        }
+        // S_i over the other approximations (z_i itself adds nothing).
+        let mut sr = [0.0; N];
+        let mut si = [0.0; N];
+        for j in 0..deg {
+            let (rj, ij) = (re[j], im[j]);
+            for i in 0..N {
+                let ar = re[i] - rj;
+                let ai = im[i] - ij;
+                let d2 = ar * ar + ai * ai;
+                let inv = if d2 > 0.0 { 1.0 / d2 } else { 0.0 };
+                sr[i] += ar * inv;
+                si[i] -= ai * inv;
+            }
+        }
+        let mut moving = 0;
+        for i in 0..deg {
+            if self.converged[i] {
+                continue;
+            }
+            let pv2 = pr[i] * pr[i] + pi[i] * pi[i];
+            let lim = tol * bound[i];
+            if pv2 <= lim * lim {
+                self.converged[i] = true;
+                continue;
+            }
+            moving += 1;
+            let dp2 = dr[i] * dr[i] + di[i] * di[i];
+            // ratio = p / p'
+            let (rr, ri) = if dp2 > 0.0 {
+                (
+                    (pr[i] * dr[i] + pi[i] * di[i]) / dp2,
+                    (pi[i] * dr[i] - pr[i] * di[i]) / dp2,
+                )
+            } else {
+                // Stationary point of p: nudge the approximation.
+                (1e-8 * (1.0 + az[i]), 1e-8 * (1.0 + az[i]))
+            };
+            // w = ratio / (1 - ratio * sum)
+            let (er, ei) = (1.0 - (rr * sr[i] - ri * si[i]), -(rr * si[i] + ri * sr[i]));
+            let e2 = er * er + ei * ei;
+            let (wr, wi) = if e2 > 0.0 {
+                ((rr * er + ri * ei) / e2, (ri * er - rr * ei) / e2)
+            } else {
+                (rr, ri)
+            };
+            let (nr, ni) = (re[i] - wr, im[i] - wi);
+            if nr.is_finite() && ni.is_finite() {
+                self.re[i] = nr;
+                self.im[i] = ni;
+            } else {
+                self.converged[i] = true;
+            }
+        }
+        moving
+    }
+}
+
+/// Whether the AVX2 version of the Aberth sweep can run.
+fn avx2_available() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("avx2")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
 /// Aberth–Ehrlich iterations (Gauss–Seidel updates) on `roots` for the
 /// polynomial with ascending coefficients `c` (nonzero ends); returns true
 /// when every approximation met the backward-error test
 /// `|p(z)| <= 4 eps sum |c_k| |z|^k`.
-fn aberth_iterate(c: &[f64], roots: &mut [C64], max_iter: usize) -> bool {
+fn aberth_gauss_seidel(c: &[f64], roots: &mut [C64], max_iter: usize) -> bool {
     let deg = c.len() - 1;
     let mut abs_c = [0.0; MAX_DEGREE + 1];
     for (k, v) in c.iter().enumerate() {
@@ -749,6 +945,90 @@ mod tests {
             assert!(out[..n]
                 .iter()
                 .any(|z| (z - C64::new(0.0, im)).norm() < 1e-9));
+        }
+    }
+
+    /// Ascending coefficients of `prod (z - r)` over real roots and
+    /// conjugate pairs `a ± bi`.
+    fn poly_from_roots(real: &[f64], pairs: &[(f64, f64)]) -> Vec<f64> {
+        let mut poly = vec![1.0];
+        let mut mul = |r: &[f64]| {
+            let mut out = vec![0.0; poly.len() + r.len() - 1];
+            for (i, a) in poly.iter().enumerate() {
+                for (j, b) in r.iter().enumerate() {
+                    out[i + j] += a * b;
+                }
+            }
+            poly = out;
+        };
+        for &r in real {
+            mul(&[-r, 1.0]);
+        }
+        for &(a, b) in pairs {
+            mul(&[a * a + b * b, -2.0 * a, 1.0]);
+        }
+        poly
+    }
+
+    #[test]
+    fn aberth_finds_all_sixteen_roots_cold_and_warm() {
+        let real = [-3.0, -1.5, -0.7, -0.2, 0.3, 0.9, 1.6, 2.5];
+        let pairs = [(0.5, 1.0), (-1.0, 0.4), (2.0, 0.8), (-0.3, 2.2)];
+        let poly = poly_from_roots(&real, &pairs);
+        let mut want: Vec<C64> = real.iter().map(|&r| C64::new(r, 0.0)).collect();
+        for &(a, b) in &pairs {
+            want.push(C64::new(a, b));
+            want.push(C64::new(a, -b));
+        }
+        let check = |out: &[C64]| {
+            for w in &want {
+                assert!(
+                    out.iter().any(|z| (z - w).norm() < 1e-8),
+                    "missing root {w}: {out:?}"
+                );
+            }
+        };
+        let mut cold = [C64::new(0.0, 0.0); MAX_DEGREE];
+        assert_eq!(aberth_roots(&poly, &mut cold, None), 16);
+        check(&cold);
+        // Warm start from the roots of a nearby polynomial.
+        let nearby: Vec<f64> = poly
+            .iter()
+            .enumerate()
+            .map(|(k, c)| c * (1.0 + 1e-3 * ((k as f64) * 0.9).sin()))
+            .collect();
+        let mut warm_start = [C64::new(0.0, 0.0); MAX_DEGREE];
+        aberth_roots(&nearby, &mut warm_start, None);
+        let mut warm = [C64::new(0.0, 0.0); MAX_DEGREE];
+        assert_eq!(aberth_roots(&poly, &mut warm, Some(&warm_start[..16])), 16);
+        check(&warm);
+    }
+
+    /// The AVX2 build of the whole-set sweep computes exactly what the
+    /// portable one does.
+    #[test]
+    fn aberth_sweep_is_the_same_with_and_without_avx2() {
+        if !avx2_available() {
+            return;
+        }
+        let poly = poly_from_roots(
+            &[-2.0, -0.5, 0.1, 0.8, 1.7, 3.0],
+            &[(0.4, 0.9), (-1.2, 0.3)],
+        );
+        let mut start = [C64::new(0.0, 0.0); MAX_DEGREE];
+        init_newton_polygon(&poly, &mut start[..10]);
+        let mut portable = AberthState::new(&poly, &start[..10]);
+        portable.avx2 = false;
+        let mut vector = AberthState::new(&poly, &start[..10]);
+        assert!(vector.avx2);
+        for _ in 0..6 {
+            let a = portable.jacobi_sweep_dispatch();
+            let b = vector.jacobi_sweep_dispatch();
+            assert_eq!(a, b);
+            for i in 0..10 {
+                assert_eq!(portable.re[i].to_bits(), vector.re[i].to_bits());
+                assert_eq!(portable.im[i].to_bits(), vector.im[i].to_bits());
+            }
         }
     }
 
