@@ -1,4 +1,4 @@
-//! The per-scene evaluation of `sctl run`: [`segment`] followed by the
+//! The per-scene evaluation of `sctl run`: [`crate::pipeline::segment`] followed by the
 //! metrics of method.md ("Metrics") against the scene's ground truth, and
 //! the per-scene figures ([`draw_scene_plots`]).
 
@@ -6,14 +6,18 @@ use crate::config::{Method, PipelineConfig};
 use crate::experiment::{Evaluator, ScenePlots};
 use crate::metrics::{frob_score, ClusteringMetrics};
 use crate::output::{file_safe, SceneResult, StageTimings};
-use crate::pipeline::{fit_cluster, segment, Segmentation};
+use crate::pipeline::{
+    estimate_hypothesis_focals, fit_cluster, focal_key, generate_hypotheses, hypothesis_key,
+    segment_with, GeneratedHypotheses, HypothesisFocals, PipelineError, Segmentation,
+};
 use crate::plots::{clusters_over_images, focal_kde, FocalKdePlot};
 use anyhow::Result;
 use datasets::Scene;
 use geometry::Correspondences;
 use nalgebra::Matrix3;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, VecDeque};
 use std::path::PathBuf;
+use std::sync::{Arc, Mutex};
 
 /// File-name suffix of the focal KDE figure of a scene.
 pub const FOCAL_KDE_SUFFIX: &str = "focal_kde";
@@ -149,16 +153,97 @@ pub fn scene_result(
 }
 
 /// Runs Algorithm 1 on in-memory scenes and scores each segmentation.
+///
+/// Steps 1–3 (the hypotheses) and step 4 (their focal lengths) of a scene
+/// are computed once for every combination that shares their parameters
+/// (e.g. both methods, or every `tau_range` of a sweep) and reused from a
+/// small cache of the most recent ones; the reused stages keep the times
+/// they took when computed in `timings.csv`. The results are those of
+/// [`crate::pipeline::segment`].
 pub struct PipelineEvaluator {
     scenes: Vec<Scene>,
     gt_models: Vec<Vec<Matrix3<f64>>>,
+    hypotheses: StageCache<GeneratedHypotheses>,
+    focals: StageCache<HypothesisFocals>,
+}
+
+/// How many results of a stage [`PipelineEvaluator`] keeps.
+const STAGE_CACHE_ENTRIES: usize = 8;
+
+/// The most recent results of a pipeline stage by key (scene and
+/// parameters), oldest dropped first.
+struct StageCache<T> {
+    entries: Mutex<VecDeque<(String, Arc<T>)>>,
+}
+
+impl<T> StageCache<T> {
+    fn new() -> Self {
+        Self {
+            entries: Mutex::new(VecDeque::new()),
+        }
+    }
+
+    /// The cached value of `key`, or `compute`'s (then cached). Two callers
+    /// may compute the same key at once; both get equal values.
+    fn get_or_compute<E>(
+        &self,
+        key: String,
+        compute: impl FnOnce() -> Result<T, E>,
+    ) -> Result<Arc<T>, E> {
+        let cached = {
+            let entries = self.entries.lock().expect("stage cache lock");
+            entries
+                .iter()
+                .find(|(k, _)| *k == key)
+                .map(|(_, v)| Arc::clone(v))
+        };
+        if let Some(value) = cached {
+            return Ok(value);
+        }
+        let value = Arc::new(compute()?);
+        let mut entries = self.entries.lock().expect("stage cache lock");
+        if !entries.iter().any(|(k, _)| *k == key) {
+            if entries.len() == STAGE_CACHE_ENTRIES {
+                entries.pop_front();
+            }
+            entries.push_back((key, Arc::clone(&value)));
+        }
+        Ok(value)
+    }
 }
 
 impl PipelineEvaluator {
     /// Prepares the scenes (and the ground-truth fits FROB compares with).
     pub fn new(scenes: Vec<Scene>) -> Self {
         let gt_models = scenes.iter().map(ground_truth_models).collect();
-        Self { scenes, gt_models }
+        Self {
+            scenes,
+            gt_models,
+            hypotheses: StageCache::new(),
+            focals: StageCache::new(),
+        }
+    }
+
+    /// [`crate::pipeline::segment`] of scene `index`, with steps 1–4 from
+    /// the cache when another combination already computed them.
+    pub fn segment(
+        &self,
+        index: usize,
+        pipeline: &PipelineConfig,
+    ) -> Result<Segmentation, PipelineError> {
+        let scene = &self.scenes[index];
+        let key = format!("{index} {}", hypothesis_key(pipeline));
+        let generated = self
+            .hypotheses
+            .get_or_compute(key.clone(), || generate_hypotheses(scene, pipeline))?;
+        let focals = match pipeline.method {
+            Method::Semical => Some(self.focals.get_or_compute::<PipelineError>(
+                format!("{key} {}", focal_key(pipeline)),
+                || Ok(estimate_hypothesis_focals(scene, pipeline, &generated)),
+            )?),
+            Method::Baseline => None,
+        };
+        segment_with(scene, pipeline, &generated, focals.as_deref())
     }
 
     /// The scenes.
@@ -179,7 +264,7 @@ impl Evaluator for PipelineEvaluator {
         plots: Option<&ScenePlots>,
     ) -> Result<(SceneResult, StageTimings)> {
         let scene = &self.scenes[index];
-        let segmentation = match segment(scene, pipeline) {
+        let segmentation = match self.segment(index, pipeline) {
             Ok(s) => s,
             Err(err) => {
                 // No hypothesis at all: every point is an outlier, and the
@@ -208,5 +293,66 @@ fn all_outliers(n: usize) -> Segmentation {
         clusters_before_filter: 0,
         timings: StageTimings::default(),
         degenerate: Some("no hypothesis".into()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pipeline::segment;
+
+    /// Everything but the timings.
+    fn without_timings(mut s: Segmentation) -> Segmentation {
+        s.timings = StageTimings::default();
+        s
+    }
+
+    /// The cached stages give exactly the segmentation of a fresh run, for
+    /// every combination sharing them, in any order, and after eviction.
+    #[test]
+    fn shared_stages_give_the_segmentation_of_a_fresh_run() {
+        let params = datasets::synthetic::SyntheticParams::default();
+        let scenes: Vec<Scene> = (0..2)
+            .map(|k| {
+                datasets::synthetic::generate_scene(&params, 7 + k, 2, &format!("s{k}")).unwrap()
+            })
+            .collect();
+        let evaluator = PipelineEvaluator::new(scenes.clone());
+        let mut configs = Vec::new();
+        for method in [Method::Semical, Method::Baseline] {
+            let variants = [
+                (0.1, focal::OnFailure::Report),
+                (0.3, focal::OnFailure::Report),
+                (0.3, focal::OnFailure::Prior),
+            ];
+            for (tau_range, focal_failure) in variants {
+                for num_samples in [150, 200] {
+                    configs.push(PipelineConfig {
+                        method,
+                        tau_range,
+                        focal_failure,
+                        num_samples,
+                        ..Default::default()
+                    });
+                }
+            }
+        }
+        // More keys than the cache holds: some are evicted and recomputed.
+        for round in 0..2 {
+            for (index, scene) in scenes.iter().enumerate() {
+                for config in &configs {
+                    let cached = evaluator.segment(index, config).unwrap();
+                    let fresh = segment(scene, config).unwrap();
+                    assert_eq!(
+                        without_timings(cached),
+                        without_timings(fresh),
+                        "round {round}, scene {index}, {config:?}"
+                    );
+                }
+            }
+        }
+        // The semical units of a scene shared their focal lengths: the cache
+        // holds a value computed once per (scene, M).
+        assert!(evaluator.focals.entries.lock().unwrap().len() <= STAGE_CACHE_ENTRIES);
     }
 }

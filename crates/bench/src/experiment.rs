@@ -254,7 +254,12 @@ pub fn run_experiment(
         .filter(|&u| options.shard.map_or(true, |s| s.contains(u)))
         .map(|u| (u / n_scenes, u % n_scenes))
         .collect();
-    let todo: Vec<(usize, usize)> = mine.iter().copied().filter(|u| !done.contains(u)).collect();
+    // Scene by scene, so that the combinations of a scene run close together
+    // and share its hypotheses (see `PipelineEvaluator`); the files are
+    // written in unit order at the end whatever the order here.
+    let mut todo: Vec<(usize, usize)> =
+        mine.iter().copied().filter(|u| !done.contains(u)).collect();
+    todo.sort_by_key(|&(c, s)| (s, c));
     let skipped = mine.len() - todo.len();
 
     let writers = Mutex::new((

@@ -308,25 +308,82 @@ fn seconds_since(t: Instant) -> f64 {
     t.elapsed().as_secs_f64()
 }
 
-/// Segments one scene by Algorithm 1 (method.md steps 1–9) with `config`.
+/// Steps 1–3 of Algorithm 1 for one scene: every minimal sample, its
+/// 8-point fit and (unless `refine` is off) its IRLS-Tukey refinement. These
+/// depend only on the scene and on `seed`, `num_samples`, `mss_size`,
+/// `eight_point`, `refine`, `thr_px` and `irls_iters`
+/// ([`hypothesis_key`]), so one set serves every combination of a sweep
+/// that shares them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GeneratedHypotheses {
+    /// The correspondences in principal-point-centred coordinates.
+    pub points: Correspondences,
+    /// Whether hypothesis `j`'s minimal sample gave an 8-point fit.
+    pub fitted: Vec<bool>,
+    /// The model of hypothesis `j` (refined, or the raw fit when `refine`
+    /// is off); None when the fit or the refinement failed.
+    pub models: Vec<Option<Matrix3<f64>>>,
+    /// Wall time of steps 1–2, seconds.
+    pub sampling_seconds: f64,
+    /// Wall time of step 3, seconds.
+    pub refine_seconds: f64,
+}
+
+impl GeneratedHypotheses {
+    /// Indices of the hypotheses with a model, in order.
+    pub fn refined(&self) -> Vec<usize> {
+        (0..self.models.len())
+            .filter(|&j| self.models[j].is_some())
+            .collect()
+    }
+}
+
+/// The parameters [`generate_hypotheses`] depends on, as a string: two
+/// configurations with the same key give the same hypotheses on a scene.
+pub fn hypothesis_key(config: &PipelineConfig) -> String {
+    format!(
+        "seed={} M={} mss={} eight_point={:?} refine={} thr_px={:e} irls_iters={}",
+        config.seed,
+        config.num_samples,
+        config.mss_size,
+        config.eight_point,
+        config.refine,
+        config.thr_px,
+        config.irls_iters
+    )
+}
+
+/// The focal lengths of step 4 for every hypothesis with a model (`None`
+/// for the others and for failed solves), and the step's wall time.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HypothesisFocals {
+    /// `(f1, f2)` of hypothesis `j`, px.
+    pub focals: Vec<Option<(f64, f64)>>,
+    /// Wall time of step 4, seconds.
+    pub seconds: f64,
+}
+
+/// The parameters [`estimate_hypothesis_focals`] depends on besides the
+/// hypotheses ([`hypothesis_key`]) and the scene's focal prior.
+pub fn focal_key(config: &PipelineConfig) -> String {
+    format!(
+        "solver={:?} weights={:?} max_iters={} failure={:?} truncate={}",
+        config.focal_solver,
+        config.weight_sets.sets(),
+        config.max_iters,
+        config.focal_failure,
+        config.truncate_focals
+    )
+}
+
+/// Steps 1–3 of Algorithm 1 (see [`GeneratedHypotheses`]).
 ///
-/// Errors only on input that admits no hypothesis at all (invalid
-/// parameters, fewer points than `mss_size`, non-finite coordinates). When
-/// every hypothesis is rejected the result is an all-outlier segmentation
-/// whose [`Segmentation::degenerate`] says why.
-///
-/// ```
-/// use bench::config::{Method, PipelineConfig};
-/// let scene = datasets::synthetic::generate_scene(
-///     &datasets::synthetic::SyntheticParams::default(), 3, 2, "demo").unwrap();
-/// let config = PipelineConfig { num_samples: 300, method: Method::Baseline, ..Default::default() };
-/// let seg = bench::pipeline::segment(&scene, &config).unwrap();
-/// assert_eq!(seg.labels.len(), scene.len());
-/// assert_eq!(seg.counts.generated, 300);
-/// assert!(seg.clusters.len() >= 1);
-/// ```
-pub fn segment(scene: &Scene, config: &PipelineConfig) -> Result<Segmentation, PipelineError> {
-    let started = Instant::now();
+/// Errors on invalid parameters, fewer points than `mss_size` and
+/// non-finite coordinates.
+pub fn generate_hypotheses(
+    scene: &Scene,
+    config: &PipelineConfig,
+) -> Result<GeneratedHypotheses, PipelineError> {
     config
         .validate()
         .map_err(|(key, message)| PipelineError::InvalidConfig { key, message })?;
@@ -346,7 +403,6 @@ pub fn segment(scene: &Scene, config: &PipelineConfig) -> Result<Segmentation, P
         });
     }
     let m = config.num_samples;
-    let mut timings = StageTimings::default();
 
     // Steps 1–2: minimal samples and their 8-point fits.
     let t = Instant::now();
@@ -363,7 +419,7 @@ pub fn segment(scene: &Scene, config: &PipelineConfig) -> Result<Segmentation, P
             f.iter().all(|v| v.is_finite()).then_some((sample, f))
         })
         .collect();
-    timings.sampling = seconds_since(t);
+    let sampling_seconds = seconds_since(t);
 
     // Step 3: IRLS-Tukey (or the raw minimal-sample F).
     let t = Instant::now();
@@ -385,21 +441,120 @@ pub fn segment(scene: &Scene, config: &PipelineConfig) -> Result<Segmentation, P
             .map(|fit| fit.as_ref().map(|(_, f)| *f))
             .collect()
     };
-    timings.refine = seconds_since(t);
+    let refine_seconds = seconds_since(t);
+    Ok(GeneratedHypotheses {
+        points,
+        fitted: fits.iter().map(Option::is_some).collect(),
+        models,
+        sampling_seconds,
+        refine_seconds,
+    })
+}
 
-    let mut hypotheses: Vec<Hypothesis> = fits
+/// Step 4 of Algorithm 1: the focal lengths of every hypothesis with a
+/// model, in parallel, with the scene's focal prior and `config`'s solver
+/// ([`focal_key`]).
+pub fn estimate_hypothesis_focals(
+    scene: &Scene,
+    config: &PipelineConfig,
+    hypotheses: &GeneratedHypotheses,
+) -> HypothesisFocals {
+    let t = Instant::now();
+    let f_prior = scene.focal_prior();
+    let weight_sets = config.weight_sets.sets();
+    let focals = hypotheses
+        .models
+        .par_iter()
+        .map(|model| {
+            let f = model.as_ref()?;
+            estimate_focals(f, config, &weight_sets, f_prior)
+        })
+        .collect();
+    HypothesisFocals {
+        focals,
+        seconds: seconds_since(t),
+    }
+}
+
+/// Segments one scene by Algorithm 1 (method.md steps 1–9) with `config`.
+///
+/// Errors only on input that admits no hypothesis at all (invalid
+/// parameters, fewer points than `mss_size`, non-finite coordinates). When
+/// every hypothesis is rejected the result is an all-outlier segmentation
+/// whose [`Segmentation::degenerate`] says why.
+///
+/// ```
+/// use bench::config::{Method, PipelineConfig};
+/// let scene = datasets::synthetic::generate_scene(
+///     &datasets::synthetic::SyntheticParams::default(), 3, 2, "demo").unwrap();
+/// let config = PipelineConfig { num_samples: 300, method: Method::Baseline, ..Default::default() };
+/// let seg = bench::pipeline::segment(&scene, &config).unwrap();
+/// assert_eq!(seg.labels.len(), scene.len());
+/// assert_eq!(seg.counts.generated, 300);
+/// assert!(seg.clusters.len() >= 1);
+/// ```
+pub fn segment(scene: &Scene, config: &PipelineConfig) -> Result<Segmentation, PipelineError> {
+    let started = Instant::now();
+    let hypotheses = generate_hypotheses(scene, config)?;
+    let focals = (config.method == Method::Semical)
+        .then(|| estimate_hypothesis_focals(scene, config, &hypotheses));
+    let mut segmentation = segment_with(scene, config, &hypotheses, focals.as_ref())?;
+    segmentation.timings.total = seconds_since(started);
+    Ok(segmentation)
+}
+
+/// Steps 5–9 of Algorithm 1 on hypotheses generated for this scene with
+/// this `config` ([`generate_hypotheses`]) and, for semical, their focal
+/// lengths ([`estimate_hypothesis_focals`]); the stage timings of those
+/// steps are copied from them. The result is that of [`segment`].
+///
+/// Errors when `focals` is missing for semical or the hypotheses do not
+/// belong to the scene, and as [`segment`].
+pub fn segment_with(
+    scene: &Scene,
+    config: &PipelineConfig,
+    generated: &GeneratedHypotheses,
+    focals: Option<&HypothesisFocals>,
+) -> Result<Segmentation, PipelineError> {
+    let started = Instant::now();
+    config
+        .validate()
+        .map_err(|(key, message)| PipelineError::InvalidConfig { key, message })?;
+    let name = scene.name.as_str();
+    let points = &generated.points;
+    let n = points.len();
+    let m = generated.models.len();
+    if n != scene.len() || m != config.num_samples {
+        return Err(PipelineError::InvalidConfig {
+            key: "num_samples",
+            message: format!(
+                "scene `{name}`: hypotheses generated for {n} points and M = {m}, not {} and {}",
+                scene.len(),
+                config.num_samples
+            ),
+        });
+    }
+    let models = &generated.models;
+    let mut timings = StageTimings {
+        sampling: generated.sampling_seconds,
+        refine: generated.refine_seconds,
+        ..StageTimings::default()
+    };
+
+    let mut hypotheses: Vec<Hypothesis> = generated
+        .fitted
         .iter()
-        .zip(&models)
-        .map(|(fit, model)| Hypothesis {
-            status: match (fit, model) {
-                (None, _) => HypothesisStatus::Degenerate,
-                (Some(_), None) => HypothesisStatus::RefineFailed,
-                (Some(_), Some(_)) => HypothesisStatus::Kept,
+        .zip(models)
+        .map(|(&fitted, model)| Hypothesis {
+            status: match (fitted, model) {
+                (false, _) => HypothesisStatus::Degenerate,
+                (true, None) => HypothesisStatus::RefineFailed,
+                (true, Some(_)) => HypothesisStatus::Kept,
             },
             focals: None,
         })
         .collect();
-    let refined: Vec<usize> = (0..m).filter(|&j| models[j].is_some()).collect();
+    let refined = generated.refined();
 
     // Steps 4–6: focal estimation, local test, consensus and band.
     let mut consensus = None;
@@ -407,21 +562,17 @@ pub fn segment(scene: &Scene, config: &PipelineConfig) -> Result<Segmentation, P
     let mut local_ok = refined.len();
     let mut focal_failures = 0;
     if config.method == Method::Semical {
-        let t = Instant::now();
-        let f_prior = scene.focal_prior();
-        let weight_sets = config.weight_sets.sets();
-        let focals: Vec<Option<(f64, f64)>> = refined
-            .par_iter()
-            .map(|&j| {
-                let f = models[j].as_ref().expect("refined");
-                estimate_focals(f, config, &weight_sets, f_prior)
-            })
-            .collect();
-        for (&j, focals) in refined.iter().zip(focals) {
-            hypotheses[j].focals = focals;
-            focal_failures += usize::from(focals.is_none());
+        let Some(focals) = focals.filter(|f| f.focals.len() == m) else {
+            return Err(PipelineError::InvalidConfig {
+                key: "method",
+                message: format!("scene `{name}`: semical needs the focal lengths of step 4"),
+            });
+        };
+        for &j in &refined {
+            hypotheses[j].focals = focals.focals[j];
+            focal_failures += usize::from(focals.focals[j].is_none());
         }
-        timings.focal = seconds_since(t);
+        timings.focal = focals.seconds;
 
         let t = Instant::now();
         let filtered = focal_filter(&mut hypotheses, &refined, config);
@@ -430,6 +581,8 @@ pub fn segment(scene: &Scene, config: &PipelineConfig) -> Result<Segmentation, P
         local_ok = filtered.2;
         timings.consensus = seconds_since(t);
     }
+    // Steps 1–4 ran before this call (or were shared with another one).
+    let shared_seconds = timings.sampling + timings.refine + timings.focal;
     let kept: Vec<usize> = refined
         .iter()
         .copied()
@@ -455,12 +608,12 @@ pub fn segment(scene: &Scene, config: &PipelineConfig) -> Result<Segmentation, P
         degenerate: None,
     };
     if kept.is_empty() {
-        segmentation.degenerate = Some(if fits.iter().all(Option::is_none) {
+        segmentation.degenerate = Some(if generated.fitted.iter().all(|&fitted| !fitted) {
             "every minimal sample is degenerate".to_string()
         } else {
             "no hypothesis survived the refinement".to_string()
         });
-        segmentation.timings.total = seconds_since(started);
+        segmentation.timings.total = seconds_since(started) + shared_seconds;
         return Ok(segmentation);
     }
 
@@ -480,7 +633,7 @@ pub fn segment(scene: &Scene, config: &PipelineConfig) -> Result<Segmentation, P
         .map_err(clustering_error)?;
     let mut residuals = vec![0.0; n];
     for &j in &kept {
-        sampson_distances_squared(models[j].as_ref().expect("kept"), &points, &mut residuals);
+        sampson_distances_squared(models[j].as_ref().expect("kept"), points, &mut residuals);
         builder
             .push_residuals(&residuals)
             .map_err(clustering_error)?;
@@ -508,13 +661,13 @@ pub fn segment(scene: &Scene, config: &PipelineConfig) -> Result<Segmentation, P
         .map(|(label, idx)| ClusterModel {
             label: label as i32,
             size: idx.len(),
-            f: fit_cluster(&points, idx),
+            f: fit_cluster(points, idx),
         })
         .collect();
     segmentation.timings.cluster_fit = seconds_since(t);
     segmentation.clusters_before_filter = clustering.clusters_before_filter;
     segmentation.labels = clustering.labels;
-    segmentation.timings.total = seconds_since(started);
+    segmentation.timings.total = seconds_since(started) + shared_seconds;
     Ok(segmentation)
 }
 
