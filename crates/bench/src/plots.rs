@@ -344,12 +344,13 @@ fn finite_range(values: impl IntoIterator<Item = f64>) -> Option<(f64, f64)> {
 // ---------------------------------------------------------------------------
 // Fig. 10: ME against M.
 
-/// One method's line in [`me_vs_samples`]: its name and, per number of
-/// sampled hypotheses M, the mean and standard deviation of ME over the
-/// scenes, in percent: `(M, mean, std)`.
+/// One line of [`me_vs_samples`]: its legend entry and, per number of
+/// sampled hypotheses M, the mean ME and the half-width of its band, in
+/// percent: `(M, mean, std)` (the std over scenes, or across seeds; the
+/// label says which).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Series {
-    /// The legend entry (e.g. `semical`).
+    /// The legend entry (e.g. `semical (mean ± std over scenes)`).
     pub label: String,
     /// `(M, mean ME %, std ME %)`, in any order.
     pub points: Vec<(usize, f64, f64)>,
@@ -418,7 +419,7 @@ impl Figure for MeVsSamples {
                 .collect();
             chart
                 .draw_series(LineSeries::new(line.clone(), colour.stroke_width(2)))?
-                .label(format!("{} (mean ± std)", series.label))
+                .label(series.label.clone())
                 .legend(move |(x, y)| {
                     PathElement::new(vec![(x, y), (x + 24, y)], colour.stroke_width(2))
                 });

@@ -656,9 +656,12 @@ fn run_plot_stem(stem: &str, plan: &SweepPlan, combination: usize) -> String {
 /// The lines of Fig. 10 when `num_samples` is swept (None otherwise): one
 /// series per combination of the other swept parameters (`method` and any
 /// other), in run order, labelled by them (`semical`, or `method=semical,
-/// tau_range=0.1`); each point is `(M, mean ME %, std ME %)` over the
-/// scenes of one combination (ddof 0, as `summary.csv`). Combinations
-/// without any ME value are left out.
+/// tau_range=0.1`). Without a `seed` sweep each point is `(M, mean ME %, std
+/// ME %)` over the scenes of one combination (ddof 0, as `summary.csv`).
+/// When `seed` is swept too, the seeds of a line are pooled: each point is
+/// the mean over the seeds of their mean ME and the standard deviation of
+/// those means (ddof 0), i.e. the seed-to-seed spread. The label says which.
+/// Combinations without any ME value are left out.
 ///
 /// ```
 /// let config = bench::config::ExperimentConfig::parse(
@@ -679,39 +682,68 @@ pub fn me_vs_samples_series(plan: &SweepPlan, values: &RunValues) -> Option<Vec<
     if !plan.columns.iter().any(|c| c == "num_samples") {
         return None;
     }
+    let pooled = plan.columns.iter().any(|c| c == "seed");
     let me = SUMMARY_METRICS
         .iter()
         .position(|m| *m == "me")
         .expect("ME is summarised");
-    let mut groups: Vec<(Vec<(&str, &str)>, Series)> = Vec::new();
+    // Per line: its key and, per M in run order, the mean ME of each
+    // combination (one per seed when pooled) and the scenes' std.
+    type Points = Vec<(usize, Vec<(f64, f64)>)>;
+    let mut groups: Vec<(Vec<(&str, &str)>, Points)> = Vec::new();
     for combo in &plan.combinations {
         let Some(stats) = values.stats(combo.index, me) else {
             continue;
         };
-        let key = combination_params(plan, combo.index, &["num_samples"]);
-        let point = (combo.pipeline.num_samples, stats.mean, stats.std);
-        match groups.iter_mut().find(|(k, _)| *k == key) {
-            Some((_, series)) => series.points.push(point),
+        let key = combination_params(plan, combo.index, &["num_samples", "seed"]);
+        let m = combo.pipeline.num_samples;
+        let index = match groups.iter().position(|(k, _)| *k == key) {
+            Some(i) => i,
             None => {
-                let label = match key.as_slice() {
-                    [("method", method)] => method.to_string(),
-                    _ => key
-                        .iter()
-                        .map(|(k, v)| format!("{k}={v}"))
-                        .collect::<Vec<_>>()
-                        .join(", "),
-                };
-                groups.push((
-                    key,
-                    Series {
-                        label,
-                        points: vec![point],
-                    },
-                ));
+                groups.push((key, Vec::new()));
+                groups.len() - 1
             }
+        };
+        let points = &mut groups[index].1;
+        match points.iter_mut().find(|(pm, _)| *pm == m) {
+            Some((_, v)) => v.push((stats.mean, stats.std)),
+            None => points.push((m, vec![(stats.mean, stats.std)])),
         }
     }
-    Some(groups.into_iter().map(|(_, s)| s).collect())
+    let series = groups
+        .into_iter()
+        .map(|(key, points)| {
+            let name = match key.as_slice() {
+                [("method", method)] => method.to_string(),
+                _ => key
+                    .iter()
+                    .map(|(k, v)| format!("{k}={v}"))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            };
+            let seeds = points.iter().map(|(_, v)| v.len()).max().unwrap_or(0);
+            let label = if pooled {
+                format!("{name} (mean of {seeds} seeds ± std across seeds)")
+            } else {
+                format!("{name} (mean ± std over scenes)")
+            };
+            let points = points
+                .into_iter()
+                .map(|(m, v)| {
+                    if pooled {
+                        let n = v.len() as f64;
+                        let mean = v.iter().map(|p| p.0).sum::<f64>() / n;
+                        let var = v.iter().map(|p| (p.0 - mean).powi(2)).sum::<f64>() / n;
+                        (m, mean, var.sqrt())
+                    } else {
+                        (m, v[0].0, v[0].1)
+                    }
+                })
+                .collect();
+            Series { label, points }
+        })
+        .collect();
+    Some(series)
 }
 
 /// The `f_peak_error` column of `table` (a `per_scene.csv`) by combination:
@@ -951,9 +983,17 @@ mod tests {
     /// A per_scene table for a sweep of method × num_samples × tau_range:
     /// rows `(method, M, tau_range, scene, me, f_peak_error)`.
     fn swept() -> (SweepPlan, CsvTable) {
+        swept_with("tau_range = [0.1, 0.3]", "0.3", 0.0)
+    }
+
+    /// As [`swept`] with `third` (a TOML sweep line) as the third swept
+    /// parameter; ME is `bump` higher where it takes the value `bumped`.
+    fn swept_with(third: &str, bumped: &str, bump: f64) -> (SweepPlan, CsvTable) {
         let config = ExperimentConfig::parse(
-            "name = \"r\"\n[dataset]\nkind = \"synthetic\"\n[sweep]\n\
-             method = [\"baseline\", \"semical\"]\nnum_samples = [500, 100]\ntau_range = [0.1, 0.3]\n",
+            &format!(
+                "name = \"r\"\n[dataset]\nkind = \"synthetic\"\n[sweep]\n\
+                 method = [\"baseline\", \"semical\"]\nnum_samples = [500, 100]\n{third}\n"
+            ),
             Path::new("r.toml"),
         )
         .unwrap();
@@ -973,6 +1013,9 @@ mod tests {
                 if combo.pipeline.num_samples == 500 {
                     me -= 0.1;
                 }
+                if combo.values[2] == bumped {
+                    me += bump;
+                }
                 let mut row = vec![String::new(); header.len()];
                 row[..3].clone_from_slice(&combo.values);
                 row[3] = scene.to_string();
@@ -988,19 +1031,25 @@ mod tests {
         (plan, CsvTable { header, rows })
     }
 
-    #[test]
-    fn me_against_m_has_one_series_per_other_combination() {
-        let (swept_plan, table) = swept();
+    /// The Fig. 10 series of a table and their labels.
+    fn series_of(plan_and_table: (SweepPlan, CsvTable)) -> (Vec<Series>, Vec<String>) {
+        let (swept_plan, table) = plan_and_table;
         let values = RunValues::collect(&swept_plan, &table, Path::new("p.csv")).unwrap();
         let series = me_vs_samples_series(&swept_plan, &values).unwrap();
-        let labels: Vec<&str> = series.iter().map(|s| s.label.as_str()).collect();
+        let labels = series.iter().map(|s| s.label.clone()).collect();
+        (series, labels)
+    }
+
+    #[test]
+    fn me_against_m_has_one_series_per_other_combination() {
+        let (series, labels) = series_of(swept());
         assert_eq!(
             labels,
             [
-                "method=baseline, tau_range=0.1",
-                "method=baseline, tau_range=0.3",
-                "method=semical, tau_range=0.1",
-                "method=semical, tau_range=0.3"
+                "method=baseline, tau_range=0.1 (mean ± std over scenes)",
+                "method=baseline, tau_range=0.3 (mean ± std over scenes)",
+                "method=semical, tau_range=0.1 (mean ± std over scenes)",
+                "method=semical, tau_range=0.3 (mean ± std over scenes)"
             ]
         );
         // Semical, tau_range 0.3: M = 500 first (sweep order), ME 0, 10 %
@@ -1013,6 +1062,25 @@ mod tests {
         assert!((points[1].1 - 15.0).abs() < 1e-9 && (points[1].2 - 5.0).abs() < 1e-9);
         // Without num_samples in the sweep there is no such figure.
         assert_eq!(me_vs_samples_series(&plan(), &values_of_plan()), None);
+    }
+
+    #[test]
+    fn me_against_m_pools_the_seeds_of_a_line() {
+        let (series, labels) = series_of(swept_with("seed = [1, 2]", "2", 0.1));
+        assert_eq!(
+            labels,
+            [
+                "baseline (mean of 2 seeds ± std across seeds)",
+                "semical (mean of 2 seeds ± std across seeds)"
+            ]
+        );
+        // Semical at M = 500: seed 1 has ME 0, 10 % (mean 5), seed 2 10,
+        // 20 % (mean 15): pooled mean 10, spread 5.
+        let points = &series[1].points;
+        assert_eq!(points.len(), 2);
+        assert_eq!(points[0].0, 500);
+        assert!((points[0].1 - 10.0).abs() < 1e-9, "{points:?}");
+        assert!((points[0].2 - 5.0).abs() < 1e-9, "{points:?}");
     }
 
     fn values_of_plan() -> RunValues {

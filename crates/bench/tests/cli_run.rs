@@ -401,7 +401,10 @@ fn plots_are_written_per_run_and_per_scene() {
     }
     // The figures carry what they are about.
     let me_vs_m = std::fs::read_to_string(plots.join("me_vs_num_samples.svg")).unwrap();
-    assert!(me_vs_m.contains("baseline (mean ± std)") && me_vs_m.contains("semical (mean ± std)"));
+    assert!(
+        me_vs_m.contains("baseline (mean ± std over scenes)")
+            && me_vs_m.contains("semical (mean ± std over scenes)")
+    );
     let kde =
         std::fs::read_to_string(plots.join("method-semical__num_samples-200/2_0900_focal_kde.svg"))
             .unwrap();

@@ -198,7 +198,10 @@ fn outputs_do_not_depend_on_threads() {
         );
     }
     let svg = std::fs::read_to_string(one.join("plots/me_vs_num_samples.svg")).unwrap();
-    assert!(svg.contains("baseline (mean ± std)") && svg.contains("semical (mean ± std)"));
+    assert!(
+        svg.contains("baseline (mean ± std over scenes)")
+            && svg.contains("semical (mean ± std over scenes)")
+    );
     let stand_in =
         std::fs::read_to_string(one.join("plots/method-baseline__num_samples-100/scene3.txt"))
             .unwrap();
