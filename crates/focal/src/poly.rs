@@ -639,14 +639,13 @@ fn init_newton_polygon(c: &[f64], roots: &mut [C64]) {
     let deg = c.len() - 1;
     let mut hull = [0usize; MAX_DEGREE + 1];
     let mut h = 0usize;
-    let logc = |k: usize| -> f64 {
-        let a = c[k].abs();
-        if a > 0.0 {
-            a.ln()
-        } else {
-            f64::NEG_INFINITY
+    let mut logs = [f64::NEG_INFINITY; MAX_DEGREE + 1];
+    for (l, ck) in logs.iter_mut().zip(c) {
+        if *ck != 0.0 {
+            *l = ck.abs().ln();
         }
-    };
+    }
+    let logc = |k: usize| logs[k];
     for (k, &ck) in c.iter().enumerate() {
         if ck == 0.0 {
             continue;
