@@ -77,12 +77,15 @@ pub fn params_file_name(params: &[(&str, &str)]) -> String {
 /// the clusters kept after the size filter; `outliers` the points labelled
 /// −1; `hypotheses_*` the counts of Algorithm 1 (generated minimal samples,
 /// refined by step 3, passing the local test of step 5, kept for the
-/// clustering); `focal_failures` the failed focal solves; `f_peak` the focal
+/// clustering); `focal_failures` the failed focal solves that left a
+/// hypothesis without focals (`focal_failure = "report"`); `focal_priors` the
+/// hypotheses whose focals are the prior returned for a failed solve
+/// (`focal_failure = "prior"`: the multi-start kept a failed solve); `f_peak` the focal
 /// consensus (Eq. 37, px, 3 decimals; empty for the baseline); `f_true` the
 /// true focal when known; `f_peak_error` `|f_peak − f_true| / f_true`;
 /// `status` `ok` (`ok (focal filter kept all)` when nothing passed the focal
 /// filter) or why every point is an outlier.
-pub const PER_SCENE_FIELDS: [&str; 22] = [
+pub const PER_SCENE_FIELDS: [&str; 23] = [
     "scene",
     "n",
     "me",
@@ -101,6 +104,7 @@ pub const PER_SCENE_FIELDS: [&str; 22] = [
     "hypotheses_local_ok",
     "hypotheses_kept",
     "focal_failures",
+    "focal_priors",
     "f_peak",
     "f_true",
     "f_peak_error",
@@ -134,8 +138,11 @@ pub struct HypothesisCounts {
     pub local_ok: usize,
     /// Hypotheses that reached the clustering.
     pub kept: usize,
-    /// Failed focal solves (step 4).
+    /// Failed focal solves that left a hypothesis without focals (step 4).
     pub focal_failures: usize,
+    /// Hypotheses whose focals are the prior standing in for a failed solve
+    /// (step 4 with `focal_failure = "prior"`).
+    pub focal_priors: usize,
 }
 
 /// Wall time of each stage of Algorithm 1 for one scene, in seconds.
@@ -240,6 +247,7 @@ impl SceneResult {
             self.hypotheses.local_ok.to_string(),
             self.hypotheses.kept.to_string(),
             self.hypotheses.focal_failures.to_string(),
+            self.hypotheses.focal_priors.to_string(),
             fixed(self.f_peak, 3),
             fixed(self.f_true, 3),
             fixed(f_peak_error, 6),
@@ -440,6 +448,7 @@ mod tests {
                 local_ok: 40,
                 kept: 35,
                 focal_failures: 7,
+                focal_priors: 0,
             },
             f_peak: Some(1000.0),
             f_true: Some(800.0),
@@ -450,9 +459,11 @@ mod tests {
         assert_eq!(fields[6], "0.666667");
         assert_eq!(fields[7], "");
         assert_eq!(fields[9], "3");
-        assert_eq!(fields[17], "1000.000");
-        assert_eq!(fields[19], "0.250000");
-        assert_eq!(fields[20], "ok");
+        assert_eq!(fields[16], "7");
+        assert_eq!(fields[17], "0");
+        assert_eq!(fields[18], "1000.000");
+        assert_eq!(fields[20], "0.250000");
+        assert_eq!(fields[21], "ok");
     }
 
     #[test]

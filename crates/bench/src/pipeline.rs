@@ -216,14 +216,15 @@ fn f_avg((f1, f2): (f64, f64)) -> f64 {
 }
 
 /// Focal lengths of one hypothesis (step 4), principal points at the origin;
-/// `weight_sets` are the multi-start weights of the robust solver.
+/// `weight_sets` are the multi-start weights of the robust solver. The flag
+/// is true when the focals are the prior standing in for a failed solve.
 fn estimate_focals(
     f: &Matrix3<f64>,
     config: &PipelineConfig,
     weight_sets: &[FocalWeights],
     f_prior: f64,
-) -> Option<(f64, f64)> {
-    let focals = match config.focal_solver {
+) -> Option<((f64, f64), bool)> {
+    let (focals, from_prior) = match config.focal_solver {
         FocalSolver::Kocur => focal::robust_focals_multi_start(
             f,
             f_prior,
@@ -232,17 +233,17 @@ fn estimate_focals(
             config.focal_failure,
         )
         .ok()
-        .map(|e| (e.f1, e.f2)),
+        .map(|e| ((e.f1, e.f2), e.from_prior)),
         FocalSolver::Bougnoux => match focal::bougnoux(f, [0.0, 0.0], [0.0, 0.0]) {
-            Ok(pair) => Some(pair),
-            Err(_) if config.focal_failure == OnFailure::Prior => Some((f_prior, f_prior)),
+            Ok(pair) => Some((pair, false)),
+            Err(_) if config.focal_failure == OnFailure::Prior => Some(((f_prior, f_prior), true)),
             Err(_) => None,
         },
     }?;
     if config.truncate_focals {
-        Some((focals.0.trunc(), focals.1.trunc()))
+        Some(((focals.0.trunc(), focals.1.trunc()), from_prior))
     } else {
-        Some(focals)
+        Some((focals, from_prior))
     }
 }
 
@@ -359,6 +360,9 @@ pub fn hypothesis_key(config: &PipelineConfig) -> String {
 pub struct HypothesisFocals {
     /// `(f1, f2)` of hypothesis `j`, px.
     pub focals: Vec<Option<(f64, f64)>>,
+    /// Whether hypothesis `j`'s focals are the prior standing in for a
+    /// failed solve (`focal_failure = "prior"`).
+    pub from_prior: Vec<bool>,
     /// Wall time of step 4, seconds.
     pub seconds: f64,
 }
@@ -462,7 +466,7 @@ pub fn estimate_hypothesis_focals(
     let t = Instant::now();
     let f_prior = scene.focal_prior();
     let weight_sets = config.weight_sets.sets();
-    let focals = hypotheses
+    let estimates: Vec<Option<((f64, f64), bool)>> = hypotheses
         .models
         .par_iter()
         .map(|model| {
@@ -471,7 +475,11 @@ pub fn estimate_hypothesis_focals(
         })
         .collect();
     HypothesisFocals {
-        focals,
+        focals: estimates.iter().map(|e| e.map(|(f, _)| f)).collect(),
+        from_prior: estimates
+            .iter()
+            .map(|e| e.is_some_and(|(_, p)| p))
+            .collect(),
         seconds: seconds_since(t),
     }
 }
@@ -561,8 +569,9 @@ pub fn segment_with(
     let mut consensus_fallback = false;
     let mut local_ok = refined.len();
     let mut focal_failures = 0;
+    let mut focal_priors = 0;
     if config.method == Method::Semical {
-        let Some(focals) = focals.filter(|f| f.focals.len() == m) else {
+        let Some(focals) = focals.filter(|f| f.focals.len() == m && f.from_prior.len() == m) else {
             return Err(PipelineError::InvalidConfig {
                 key: "method",
                 message: format!("scene `{name}`: semical needs the focal lengths of step 4"),
@@ -571,6 +580,7 @@ pub fn segment_with(
         for &j in &refined {
             hypotheses[j].focals = focals.focals[j];
             focal_failures += usize::from(focals.focals[j].is_none());
+            focal_priors += usize::from(focals.from_prior[j]);
         }
         timings.focal = focals.seconds;
 
@@ -594,6 +604,7 @@ pub fn segment_with(
         local_ok,
         kept: kept.len(),
         focal_failures,
+        focal_priors,
     };
 
     let mut segmentation = Segmentation {

@@ -80,6 +80,7 @@ impl Evaluator for Stand {
                 local_ok: p.num_samples / 2,
                 kept: p.num_samples / 3,
                 focal_failures: 1,
+                focal_priors: 0,
             },
             f_peak: Some(1000.0 + scene as f64),
             f_true: None,

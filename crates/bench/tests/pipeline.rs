@@ -170,6 +170,22 @@ fn every_variant_runs_and_labels_every_point() {
         }
         if v.focal_failure == OnFailure::Prior {
             assert_eq!(seg.counts.focal_failures, 0, "{v:?}");
+            // Every prior stand-in carries exactly the prior.
+            let prior = scene.focal_prior();
+            let at_prior = seg
+                .hypotheses
+                .iter()
+                .filter(|h| h.focals == Some((prior, prior)))
+                .count();
+            assert!(seg.counts.focal_priors <= at_prior, "{v:?}");
+            if v.focal_solver == FocalSolver::Bougnoux {
+                // A closed-form answer is never exactly the prior: every
+                // hypothesis at the prior is a stand-in, and there are some.
+                assert_eq!(seg.counts.focal_priors, at_prior, "{v:?}");
+                assert!(at_prior > 0, "{v:?}");
+            }
+        } else {
+            assert_eq!(seg.counts.focal_priors, 0, "{v:?}");
         }
         if v.truncate_focals {
             assert!(seg
