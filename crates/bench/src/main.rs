@@ -25,6 +25,8 @@ enum Command {
     Merge(cli::merge::Args),
     /// Focal lengths from fundamental matrices (Bougnoux and the robust iterative solver).
     Focal(cli::focal::Args),
+    /// Focal lengths of the F fitted to each ground-truth motion of a config's dataset (CSV).
+    GtFocals(cli::gt_focals::Args),
     /// T-Linkage (or J-Linkage) clustering of a preference matrix read from CSV.
     Tlinkage(cli::tlinkage::Args),
     /// Print a one-line JSON summary of each scene of a dataset.
@@ -45,6 +47,7 @@ fn main() -> std::process::ExitCode {
         Command::Compare(args) => cli::compare::run(args),
         Command::Merge(args) => cli::merge::run(args),
         Command::Focal(args) => cli::focal::run(args),
+        Command::GtFocals(args) => cli::gt_focals::run(args),
         Command::Tlinkage(args) => cli::tlinkage::run(args),
         Command::Inspect(args) => cli::inspect::run(args),
         Command::Synth(args) => cli::synth::run(args),

@@ -2,6 +2,7 @@
 
 pub mod compare;
 pub mod focal;
+pub mod gt_focals;
 pub mod inspect;
 pub mod merge;
 pub mod metrics;

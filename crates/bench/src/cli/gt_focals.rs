@@ -1,0 +1,95 @@
+//! `sctl gt-focals CONFIG.toml`: the focal lengths implied by each
+//! ground-truth motion of every scene of a config's dataset, as a CSV on
+//! stdout — the check of whether the focal stage can work on the data at
+//! all: F is the Hartley-normalised 8-point fit to all of a motion's points
+//! (centred coordinates), solved by the config's robust solver (its weight
+//! sets and `max_iters`, failures reported) and by Bougnoux's formula.
+
+use anyhow::{Context, Result};
+use bench::config::ExperimentConfig;
+use bench::dataset::load_scenes;
+use bench::pipeline::fit_cluster;
+use focal::OnFailure;
+use geometry::Correspondences;
+use std::collections::BTreeMap;
+use std::io::Write;
+use std::path::PathBuf;
+
+/// Options of `sctl gt-focals`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// The experiment file whose dataset and focal-solver settings to use.
+    pub config: PathBuf,
+    /// Data root [default: $SCTL_DATA_ROOT, else the config's data_root, else datasets/].
+    #[arg(long, value_name = "DIR")]
+    pub data_root: Option<PathBuf>,
+}
+
+/// The CSV header.
+pub const HEADER: &str = "scene,motion,points,f_prior,f_true,kocur_f1,kocur_f2,kocur_iterations,kocur_status,bougnoux_f1,bougnoux_f2";
+
+fn cell(v: Option<f64>) -> String {
+    v.map_or(String::new(), |v| format!("{v:.3}"))
+}
+
+/// Prints one row per (scene, ground-truth motion).
+pub fn run(args: Args) -> Result<()> {
+    let config = ExperimentConfig::load(&args.config)?;
+    let scenes = load_scenes(&config.dataset, args.data_root.as_deref(), false)
+        .with_context(|| format!("{}: [dataset]", args.config.display()))?;
+    let pipeline = &config.pipeline;
+    let weight_sets = pipeline.weight_sets.sets();
+    let mut out = std::io::stdout().lock();
+    writeln!(out, "{HEADER}")?;
+    for scene in &scenes {
+        let Some(labels) = &scene.labels else {
+            continue;
+        };
+        let points = Correspondences::new(&scene.points1, &scene.points2)
+            .with_context(|| format!("scene `{}`", scene.name))?
+            .shifted(scene.principal_point, scene.principal_point);
+        let mut motions: BTreeMap<i32, Vec<usize>> = BTreeMap::new();
+        for (i, &l) in labels.iter().enumerate() {
+            if l > 0 {
+                motions.entry(l).or_default().push(i);
+            }
+        }
+        let f_prior = scene.focal_prior();
+        for (motion, idx) in &motions {
+            let f = fit_cluster(&points, idx);
+            let kocur = f.map(|f| {
+                focal::robust_focals_multi_start(
+                    &f,
+                    f_prior,
+                    &weight_sets,
+                    pipeline.max_iters,
+                    OnFailure::Report,
+                )
+            });
+            let (k1, k2, iterations, status) = match &kocur {
+                Some(Ok(e)) => (
+                    Some(e.f1),
+                    Some(e.f2),
+                    e.iterations.to_string(),
+                    "ok".to_string(),
+                ),
+                Some(Err(e)) => (None, None, e.iterations().to_string(), "failed".to_string()),
+                None => (None, None, String::new(), "no fit".to_string()),
+            };
+            let bougnoux = f.and_then(|f| focal::bougnoux(&f, [0.0, 0.0], [0.0, 0.0]).ok());
+            writeln!(
+                out,
+                "{},{motion},{},{},{},{},{},{iterations},{status},{},{}",
+                scene.name,
+                idx.len(),
+                cell(Some(f_prior)),
+                cell(scene.true_focal),
+                cell(k1),
+                cell(k2),
+                cell(bougnoux.map(|b| b.0)),
+                cell(bougnoux.map(|b| b.1)),
+            )?;
+        }
+    }
+    Ok(())
+}

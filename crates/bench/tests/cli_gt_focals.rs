@@ -1,0 +1,88 @@
+//! `sctl gt-focals` end to end: one row per ground-truth motion, equal to
+//! the library's answers on the F fitted to that motion; bad input.
+
+use assert_cmd::Command;
+use bench::config::ExperimentConfig;
+use bench::pipeline::fit_cluster;
+use geometry::Correspondences;
+use predicates::prelude::*;
+use std::path::PathBuf;
+
+fn quickstart() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../configs/quickstart.toml")
+}
+
+#[test]
+fn one_row_per_motion_with_the_libraries_answers() {
+    let assert = Command::cargo_bin("sctl")
+        .unwrap()
+        .arg("gt-focals")
+        .arg(quickstart())
+        .assert()
+        .success();
+    let text = String::from_utf8(assert.get_output().stdout.clone()).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next().unwrap(), bench_header());
+    let rows: Vec<Vec<String>> = lines
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect();
+
+    let config = ExperimentConfig::load(&quickstart()).unwrap();
+    let scenes = bench::dataset::load_scenes(&config.dataset, None, false).unwrap();
+    let mut expected = Vec::new();
+    for scene in &scenes {
+        let points = Correspondences::new(&scene.points1, &scene.points2)
+            .unwrap()
+            .shifted(scene.principal_point, scene.principal_point);
+        let labels = scene.labels.as_ref().unwrap();
+        for motion in 1..=scene.num_motions() as i32 {
+            let idx: Vec<usize> = (0..labels.len()).filter(|&i| labels[i] == motion).collect();
+            let f = fit_cluster(&points, &idx).unwrap();
+            let est = focal::robust_focals_multi_start(
+                &f,
+                scene.focal_prior(),
+                &config.pipeline.weight_sets.sets(),
+                config.pipeline.max_iters,
+                focal::OnFailure::Report,
+            );
+            expected.push((
+                scene.name.clone(),
+                motion,
+                idx.len(),
+                scene.true_focal,
+                est.ok(),
+            ));
+        }
+    }
+    assert_eq!(rows.len(), expected.len());
+    assert!(rows.len() >= 4);
+    for (row, (name, motion, points, f_true, est)) in rows.iter().zip(&expected) {
+        assert_eq!(row[0], *name);
+        assert_eq!(row[1], motion.to_string());
+        assert_eq!(row[2], points.to_string());
+        assert_eq!(row[4], format!("{:.3}", f_true.unwrap()));
+        match est {
+            Some(e) => {
+                assert_eq!(row[5], format!("{:.3}", e.f1));
+                assert_eq!(row[6], format!("{:.3}", e.f2));
+                assert_eq!(row[7], e.iterations.to_string());
+                assert_eq!(row[8], "ok");
+            }
+            None => assert_eq!(row[8], "failed"),
+        }
+    }
+}
+
+fn bench_header() -> &'static str {
+    "scene,motion,points,f_prior,f_true,kocur_f1,kocur_f2,kocur_iterations,kocur_status,bougnoux_f1,bougnoux_f2"
+}
+
+#[test]
+fn a_missing_config_is_an_error_naming_it() {
+    Command::cargo_bin("sctl")
+        .unwrap()
+        .args(["gt-focals", "no/such/config.toml"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains("no/such/config.toml"));
+}
