@@ -10,6 +10,7 @@ pub mod metrics;
 pub mod output;
 pub mod pipeline;
 pub mod plots;
+pub mod quality;
 pub mod report;
 pub mod sweep;
 pub mod wilcoxon;

@@ -1,6 +1,7 @@
 //! One module per `sctl` subcommand: its clap `Args` and its `run` function.
 
 pub mod compare;
+pub mod filter_quality;
 pub mod focal;
 pub mod gt_focals;
 pub mod inspect;

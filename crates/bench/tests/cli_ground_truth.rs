@@ -1,5 +1,6 @@
-//! `sctl gt-focals` end to end: one row per ground-truth motion, equal to
-//! the library's answers on the F fitted to that motion; bad input.
+//! The ground-truth checks end to end: `sctl gt-focals` (one row per
+//! ground-truth motion, equal to the library's answers on the F fitted to
+//! that motion; bad input) and `sctl filter-quality` (counts that add up).
 
 use assert_cmd::Command;
 use bench::config::ExperimentConfig;
@@ -12,15 +13,20 @@ fn quickstart() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../configs/quickstart.toml")
 }
 
-#[test]
-fn one_row_per_motion_with_the_libraries_answers() {
+/// What `sctl <subcommand> configs/quickstart.toml` prints (it must succeed).
+fn stdout_on_quickstart(subcommand: &str) -> String {
     let assert = Command::cargo_bin("sctl")
         .unwrap()
-        .arg("gt-focals")
+        .arg(subcommand)
         .arg(quickstart())
         .assert()
         .success();
-    let text = String::from_utf8(assert.get_output().stdout.clone()).unwrap();
+    String::from_utf8(assert.get_output().stdout.clone()).unwrap()
+}
+
+#[test]
+fn one_row_per_motion_with_the_libraries_answers() {
+    let text = stdout_on_quickstart("gt-focals");
     let mut lines = text.lines();
     assert_eq!(lines.next().unwrap(), bench_header());
     let rows: Vec<Vec<String>> = lines
@@ -85,4 +91,23 @@ fn a_missing_config_is_an_error_naming_it() {
         .assert()
         .failure()
         .stderr(predicate::str::contains("no/such/config.toml"));
+}
+
+#[test]
+fn filter_quality_counts_add_up_per_scene() {
+    let text = stdout_on_quickstart("filter-quality");
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "scene,refined,good_refined,kept,good_kept,discarded,good_discarded"
+    );
+    let rows: Vec<Vec<usize>> = lines
+        .map(|l| l.split(',').skip(1).map(|c| c.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), 4);
+    for r in &rows {
+        assert_eq!(r[2] + r[4], r[0], "{r:?}");
+        assert_eq!(r[3] + r[5], r[1], "{r:?}");
+        assert!(r[1] > 0, "every quick scene has good models: {r:?}");
+    }
 }
