@@ -199,6 +199,37 @@ pub fn ground_truth_plot_labels(ground_truth: &[i32]) -> Vec<i32> {
 
 type DrawResult<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
+/// The chart layout shared by every figure: the title as caption, a
+/// 16-pixel margin, room for the x labels and `y_label_area` pixels for the
+/// y labels.
+fn chart_builder<'a, 'b, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    title: &str,
+    y_label_area: u32,
+) -> ChartBuilder<'a, 'b, DB> {
+    let mut builder = ChartBuilder::on(area);
+    builder
+        .caption(title, (FONT, 24))
+        .margin(16)
+        .x_label_area_size(48)
+        .y_label_area_size(y_label_area);
+    builder
+}
+
+/// The legend box shared by every figure, at `position`.
+fn draw_legend<'a, DB: DrawingBackend + 'a, CT: CoordTranslate>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    position: SeriesLabelPosition,
+) -> DrawResult<DB> {
+    chart
+        .configure_series_labels()
+        .position(position)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .label_font((FONT, 16))
+        .draw()
+}
+
 /// One figure, drawable on any plotters backend.
 trait Figure {
     fn size(&self) -> (u32, u32);
@@ -381,12 +412,7 @@ impl Figure for MeVsSamples {
         root.fill(&WHITE)?;
         let (m_lo, m_hi) = padded(m_range, 0.04);
         let y_hi = (y_range.1 * 1.1).max(1.0);
-        let mut chart = ChartBuilder::on(root)
-            .caption(title, (FONT, 24))
-            .margin(16)
-            .x_label_area_size(48)
-            .y_label_area_size(64)
-            .build_cartesian_2d(m_lo..m_hi, 0.0..y_hi)?;
+        let mut chart = chart_builder(root, title, 64).build_cartesian_2d(m_lo..m_hi, 0.0..y_hi)?;
         chart
             .configure_mesh()
             .x_desc("M (sampled hypotheses)")
@@ -425,13 +451,7 @@ impl Figure for MeVsSamples {
                 });
             chart.draw_series(line.into_iter().map(|p| Circle::new(p, 4, colour.filled())))?;
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .label_font((FONT, 16))
-            .draw()
+        draw_legend(&mut chart, SeriesLabelPosition::UpperRight)
     }
 }
 
@@ -583,12 +603,8 @@ impl Figure for FocalKde<'_> {
         let y_hi = if y_hi > 0.0 { y_hi } else { 1.0 };
 
         root.fill(&WHITE)?;
-        let mut chart = ChartBuilder::on(root)
-            .caption(p.title, (FONT, 24))
-            .margin(16)
-            .x_label_area_size(48)
-            .y_label_area_size(80)
-            .build_cartesian_2d(x_lo..x_hi, 0.0..y_hi)?;
+        let mut chart =
+            chart_builder(root, p.title, 80).build_cartesian_2d(x_lo..x_hi, 0.0..y_hi)?;
         chart
             .configure_mesh()
             .x_desc("focal length f_avg (px)")
@@ -677,13 +693,7 @@ impl Figure for FocalKde<'_> {
                     PathElement::new(vec![(x, y), (x + 24, y)], TRUE_FOCAL_COLOUR.stroke_width(2))
                 });
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .label_font((FONT, 16))
-            .draw()
+        draw_legend(&mut chart, SeriesLabelPosition::UpperRight)
     }
 }
 
@@ -1105,12 +1115,7 @@ impl Figure for FocalErrorHistogram {
         let y_hi = y_hi + y_hi.div_ceil(5);
 
         root.fill(&WHITE)?;
-        let mut chart = ChartBuilder::on(root)
-            .caption(title, (FONT, 24))
-            .margin(16)
-            .x_label_area_size(48)
-            .y_label_area_size(64)
-            .build_cartesian_2d(0.0..x_hi, 0u32..y_hi)?;
+        let mut chart = chart_builder(root, title, 64).build_cartesian_2d(0.0..x_hi, 0u32..y_hi)?;
         chart
             .configure_mesh()
             .x_desc("|f_peak − f_true| / f_true")
@@ -1149,13 +1154,7 @@ impl Figure for FocalErrorHistogram {
             5,
             TRUE_FOCAL_COLOUR.stroke_width(2),
         ))?;
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .label_font((FONT, 16))
-            .draw()
+        draw_legend(&mut chart, SeriesLabelPosition::UpperRight)
     }
 }
 
@@ -1236,12 +1235,7 @@ impl Figure for MeScatter {
         // A square plotting area: pad the sides.
         let side_pad = width.saturating_sub(height) as i32 / 2;
         let area = root.margin(0, 0, side_pad, side_pad);
-        let mut chart = ChartBuilder::on(&area)
-            .caption(title, (FONT, 24))
-            .margin(16)
-            .x_label_area_size(48)
-            .y_label_area_size(64)
-            .build_cartesian_2d(0.0..hi, 0.0..hi)?;
+        let mut chart = chart_builder(&area, title, 64).build_cartesian_2d(0.0..hi, 0.0..hi)?;
         chart
             .configure_mesh()
             .x_desc("baseline ME (%)")
@@ -1286,13 +1280,7 @@ impl Figure for MeScatter {
                     )
             }))?;
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .label_font((FONT, 16))
-            .draw()
+        draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)
     }
 }
 
