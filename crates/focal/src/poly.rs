@@ -1043,23 +1043,27 @@ mod tests {
         assert!((out[2] - C64::new(3.0, 0.0)).norm() < 1e-12);
     }
 
+    /// Two sets of four lines `a0 + a1 t1 + a2 t2 = 0` whose products are
+    /// P and Q: their 16 intersections are the real solutions.
+    const LINES_P: [[f64; 3]; 4] = [
+        [0.3, 1.0, 0.2],
+        [-0.5, 1.0, -0.4],
+        [0.1, 0.8, 1.0],
+        [-0.9, -0.3, 1.0],
+    ];
+    const LINES_Q: [[f64; 3]; 4] = [
+        [0.2, 1.0, 0.9],
+        [0.7, -1.0, 0.35],
+        [-0.4, 0.15, 1.0],
+        [0.6, 0.5, -1.0],
+    ];
+
     #[test]
     fn resultant_vanishes_exactly_at_common_roots() {
         // P = product of 4 lines, Q = product of 4 other lines: the 16
         // intersection points are the solutions; the resultant in t2 must
         // vanish at each intersection's t2.
-        let lp = [
-            [0.3, 1.0, 0.2],
-            [-0.5, 1.0, -0.4],
-            [0.1, 0.8, 1.0],
-            [-0.9, -0.3, 1.0],
-        ];
-        let lq = [
-            [0.2, 1.0, 0.9],
-            [0.7, -1.0, 0.35],
-            [-0.4, 0.15, 1.0],
-            [0.6, 0.5, -1.0],
-        ];
+        let (lp, lq) = (LINES_P, LINES_Q);
         let p = product_of_lines(&lp);
         let q = product_of_lines(&lq);
         let res = resultant_in_t2(&p, &q);
@@ -1081,18 +1085,7 @@ mod tests {
 
     #[test]
     fn finds_the_smallest_of_sixteen_real_solutions() {
-        let lp = [
-            [0.3, 1.0, 0.2],
-            [-0.5, 1.0, -0.4],
-            [0.1, 0.8, 1.0],
-            [-0.9, -0.3, 1.0],
-        ];
-        let lq = [
-            [0.2, 1.0, 0.9],
-            [0.7, -1.0, 0.35],
-            [-0.4, 0.15, 1.0],
-            [0.6, 0.5, -1.0],
-        ];
+        let (lp, lq) = (LINES_P, LINES_Q);
         let p = product_of_lines(&lp);
         let q = product_of_lines(&lq);
         let mut cache = RootCache::default();
