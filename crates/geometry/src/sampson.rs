@@ -54,10 +54,10 @@ pub(crate) fn rescale_power_of_two(f: &Matrix3<f64>) -> Matrix3<f64> {
     g * exp2i(k1) * exp2i(-exponent - k1)
 }
 
+/// `(e, a, b, c, d)` for one match: the residual `e = x2ᵀ F x1` and the
+/// epipolar lines `F x1 = (a, b, ·)`, `Fᵀ x2 = (c, d, ·)`.
 #[inline(always)]
-fn epipolar_terms(f: &Matrix3<f64>, p1: [f64; 2], p2: [f64; 2]) -> (f64, f64, f64) {
-    let [x1, y1] = p1;
-    let [x2, y2] = p2;
+fn epipolar_lines(f: &Matrix3<f64>, x1: f64, y1: f64, x2: f64, y2: f64) -> [f64; 5] {
     // F x1
     let a = f[(0, 0)] * x1 + f[(0, 1)] * y1 + f[(0, 2)];
     let b = f[(1, 0)] * x1 + f[(1, 1)] * y1 + f[(1, 2)];
@@ -65,7 +65,13 @@ fn epipolar_terms(f: &Matrix3<f64>, p1: [f64; 2], p2: [f64; 2]) -> (f64, f64, f6
     // Fᵀ x2
     let c = f[(0, 0)] * x2 + f[(1, 0)] * y2 + f[(2, 0)];
     let d = f[(0, 1)] * x2 + f[(1, 1)] * y2 + f[(2, 1)];
-    let e = x2 * a + y2 * b + c3;
+    [x2 * a + y2 * b + c3, a, b, c, d]
+}
+
+/// `(e, a² + b², c² + d²)` for one match (see [`epipolar_lines`]).
+#[inline(always)]
+fn epipolar_terms(f: &Matrix3<f64>, p1: [f64; 2], p2: [f64; 2]) -> (f64, f64, f64) {
+    let [e, a, b, c, d] = epipolar_lines(f, p1[0], p1[1], p2[0], p2[1]);
     (e, a * a + b * b, c * c + d * d)
 }
 
@@ -73,12 +79,7 @@ fn epipolar_terms(f: &Matrix3<f64>, p1: [f64; 2], p2: [f64; 2]) -> (f64, f64, f6
 /// (the gradient summed in that order, as both batch forms need it).
 #[inline(always)]
 fn batch_terms(f: &Matrix3<f64>, x1: f64, y1: f64, x2: f64, y2: f64) -> (f64, f64) {
-    let a = f[(0, 0)] * x1 + f[(0, 1)] * y1 + f[(0, 2)];
-    let b = f[(1, 0)] * x1 + f[(1, 1)] * y1 + f[(1, 2)];
-    let c3 = f[(2, 0)] * x1 + f[(2, 1)] * y1 + f[(2, 2)];
-    let c = f[(0, 0)] * x2 + f[(1, 0)] * y2 + f[(2, 0)];
-    let d = f[(0, 1)] * x2 + f[(1, 1)] * y2 + f[(2, 1)];
-    let e = x2 * a + y2 * b + c3;
+    let [e, a, b, c, d] = epipolar_lines(f, x1, y1, x2, y2);
     (e, a * a + b * b + c * c + d * d)
 }
 
