@@ -110,6 +110,22 @@ pub fn ground_truth_models(scene: &Scene) -> Vec<Matrix3<f64>> {
         return Vec::new();
     };
     let points = points.shifted(scene.principal_point, scene.principal_point);
+    motion_indices(labels)
+        .values()
+        .filter_map(|idx| fit_cluster(&points, idx))
+        .collect()
+}
+
+/// The indices of the points of each ground-truth motion (labels > 0), by
+/// label in increasing order.
+///
+/// ```
+/// let motions = bench::evaluate::motion_indices(&[1, 0, 2, 1]);
+/// assert_eq!(motions[&1], vec![0, 3]);
+/// assert_eq!(motions[&2], vec![2]);
+/// assert_eq!(motions.len(), 2);
+/// ```
+pub fn motion_indices(labels: &[i32]) -> BTreeMap<i32, Vec<usize>> {
     let mut motions: BTreeMap<i32, Vec<usize>> = BTreeMap::new();
     for (i, &l) in labels.iter().enumerate() {
         if l > 0 {
@@ -117,9 +133,6 @@ pub fn ground_truth_models(scene: &Scene) -> Vec<Matrix3<f64>> {
         }
     }
     motions
-        .values()
-        .filter_map(|idx| fit_cluster(&points, idx))
-        .collect()
 }
 
 /// The `per_scene.csv` record of a segmentation of `scene`.

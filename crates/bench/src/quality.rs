@@ -39,10 +39,7 @@ pub fn is_good_model(inliers: &[usize], labels: &[i32]) -> bool {
     let Some((motion, &hits)) = counts.iter().enumerate().skip(1).max_by_key(|(_, &c)| c) else {
         return false;
     };
-    let size = labels
-        .iter()
-        .filter(|&&l| l as usize == motion && l > 0)
-        .count();
+    let size = labels.iter().filter(|&&l| l == motion as i32).count();
     hits > 0
         && hits as f64 >= GOOD_PRECISION * inliers.len() as f64
         && hits as f64 >= GOOD_RECALL * size as f64

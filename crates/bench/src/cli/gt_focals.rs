@@ -8,10 +8,10 @@
 use anyhow::{Context, Result};
 use bench::config::ExperimentConfig;
 use bench::dataset::load_scenes;
+use bench::evaluate::motion_indices;
 use bench::pipeline::fit_cluster;
 use focal::OnFailure;
 use geometry::Correspondences;
-use std::collections::BTreeMap;
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -48,12 +48,7 @@ pub fn run(args: Args) -> Result<()> {
         let points = Correspondences::new(&scene.points1, &scene.points2)
             .with_context(|| format!("scene `{}`", scene.name))?
             .shifted(scene.principal_point, scene.principal_point);
-        let mut motions: BTreeMap<i32, Vec<usize>> = BTreeMap::new();
-        for (i, &l) in labels.iter().enumerate() {
-            if l > 0 {
-                motions.entry(l).or_default().push(i);
-            }
-        }
+        let motions = motion_indices(labels);
         let f_prior = scene.focal_prior();
         for (motion, idx) in &motions {
             let f = fit_cluster(&points, idx);
