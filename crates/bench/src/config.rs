@@ -46,6 +46,9 @@ pub enum FocalSolver {
     Kocur,
     /// Bougnoux's closed form (Bougnoux 1998).
     Bougnoux,
+    /// Answers computed outside this project, read from
+    /// [`PipelineConfig::focal_file`] (see [`crate::focal_file`]).
+    External,
 }
 
 /// The local test of Algorithm 1 step 5 (Eq. 36).
@@ -172,8 +175,16 @@ pub struct PipelineConfig {
     /// 8-point variant (step 2): `normalized` (text) or `plain` (reference
     /// code). Default `normalized`.
     pub eight_point: EightPoint,
-    /// Focal solver (step 4): `kocur` or `bougnoux`. Default `kocur`.
+    /// Focal solver (step 4): `kocur`, `bougnoux` or `external`. Default
+    /// `kocur`.
     pub focal_solver: FocalSolver,
+    /// The CSV of `focal_solver = "external"` (see [`crate::focal_file`]),
+    /// relative to the working directory; `{seed}` is replaced by the seed.
+    /// Answers are used as given (truncated when `truncate_focals`); a
+    /// non-finite one leaves the hypothesis without focals. Default empty
+    /// (not serialised when empty).
+    #[serde(skip_serializing_if = "String::is_empty")]
+    pub focal_file: String,
     /// Multi-start weight sets of the robust solver: `adelaidermf` (4 sets),
     /// `hopef` (6 sets) or an explicit list. Default `adelaidermf`.
     pub weight_sets: WeightSets,
@@ -212,6 +223,7 @@ impl Default for PipelineConfig {
             refine: true,
             eight_point: EightPoint::Normalized,
             focal_solver: FocalSolver::Kocur,
+            focal_file: String::new(),
             weight_sets: WeightSets::Preset(WeightPreset::Adelaidermf),
             max_iters: 100,
             focal_failure: OnFailure::Report,
@@ -226,7 +238,7 @@ impl Default for PipelineConfig {
 
 /// The keys of [`PipelineConfig`] in declaration order: the order of the
 /// swept-parameter columns in every output file.
-pub const PIPELINE_KEYS: [&str; 18] = [
+pub const PIPELINE_KEYS: [&str; 19] = [
     "method",
     "num_samples",
     "mss_size",
@@ -237,6 +249,7 @@ pub const PIPELINE_KEYS: [&str; 18] = [
     "refine",
     "eight_point",
     "focal_solver",
+    "focal_file",
     "weight_sets",
     "max_iters",
     "focal_failure",
@@ -277,6 +290,12 @@ impl PipelineConfig {
         }
         if self.max_iters == 0 {
             return Err(("max_iters", "must be at least 1".into()));
+        }
+        if self.focal_solver == FocalSolver::External && self.focal_file.is_empty() {
+            return Err((
+                "focal_file",
+                "must name the CSV of focal lengths when focal_solver = \"external\"".into(),
+            ));
         }
         let sets = self.weight_sets.sets();
         if sets.is_empty() {
@@ -514,7 +533,8 @@ EXPERIMENT FILE (TOML)
   irls_iters = 5               IRLS-Tukey outer iterations
   refine = true                false: raw minimal-sample F (ablation)
   eight_point = \"normalized\"   normalized | plain
-  focal_solver = \"kocur\"       kocur | bougnoux
+  focal_solver = \"kocur\"       kocur | bougnoux | external (read from focal_file)
+  focal_file = \"f{seed}.csv\"   focal_solver = \"external\": CSV of scene,hypothesis,f1,f2
   weight_sets = \"adelaidermf\"  adelaidermf | hopef | [[w_f1, w_pp1, w_f2, w_pp2], ...]
   max_iters = 100              robust focal solver iterations
   focal_failure = \"report\"     report | prior (reference code)
@@ -861,7 +881,12 @@ mod tests {
 
     #[test]
     fn pipeline_keys_follow_the_declaration_order() {
-        let table = toml::Table::try_from(PipelineConfig::default()).unwrap();
+        // focal_file is left out when empty: give it a value.
+        let config = PipelineConfig {
+            focal_file: "f.csv".into(),
+            ..Default::default()
+        };
+        let table = toml::Table::try_from(config.clone()).unwrap();
         let mut keys: Vec<&str> = table.keys().map(String::as_str).collect();
         let mut expected = PIPELINE_KEYS.to_vec();
         keys.sort();
@@ -869,7 +894,7 @@ mod tests {
         assert_eq!(keys, expected);
         // serde serializes in declaration order; toml's Table sorts, so check
         // the declaration order through the serialized text instead.
-        let text = toml::to_string(&PipelineConfig::default()).unwrap();
+        let text = toml::to_string(&config).unwrap();
         let order: Vec<&str> = text
             .lines()
             .filter_map(|l| l.split_once(" = ").map(|(k, _)| k))

@@ -252,7 +252,7 @@ impl PipelineEvaluator {
         let focals = match pipeline.method {
             Method::Semical => Some(self.focals.get_or_compute::<PipelineError>(
                 format!("{key} {}", focal_key(pipeline)),
-                || Ok(estimate_hypothesis_focals(scene, pipeline, &generated)),
+                || estimate_hypothesis_focals(scene, pipeline, &generated),
             )?),
             Method::Baseline => None,
         };

@@ -6,6 +6,7 @@ pub mod config;
 pub mod dataset;
 pub mod evaluate;
 pub mod experiment;
+pub mod focal_file;
 pub mod metrics;
 pub mod output;
 pub mod pipeline;

@@ -27,6 +27,8 @@ enum Command {
     Focal(cli::focal::Args),
     /// Focal lengths of the F fitted to each ground-truth motion of a config's dataset (CSV).
     GtFocals(cli::gt_focals::Args),
+    /// The refined hypotheses of a config's scenes (CSV), for an external focal solver.
+    Hypotheses(cli::hypotheses::Args),
     /// Good models kept and discarded by the focal filter, per scene of a config's dataset (CSV).
     FilterQuality(cli::filter_quality::Args),
     /// T-Linkage (or J-Linkage) clustering of a preference matrix read from CSV.
@@ -50,6 +52,7 @@ fn main() -> std::process::ExitCode {
         Command::Merge(args) => cli::merge::run(args),
         Command::Focal(args) => cli::focal::run(args),
         Command::GtFocals(args) => cli::gt_focals::run(args),
+        Command::Hypotheses(args) => cli::hypotheses::run(args),
         Command::FilterQuality(args) => cli::filter_quality::run(args),
         Command::Tlinkage(args) => cli::tlinkage::run(args),
         Command::Inspect(args) => cli::inspect::run(args),

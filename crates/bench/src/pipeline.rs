@@ -13,6 +13,7 @@
 //! `x = (x − pp, y − pp_y, 1)`.
 
 use crate::config::{EightPoint, FocalSolver, LocalTest, Method, PipelineConfig};
+use crate::focal_file;
 use crate::output::{HypothesisCounts, StageTimings};
 use clustering::{ClusteringError, ClusteringParams};
 use datasets::Scene;
@@ -56,6 +57,15 @@ pub enum PipelineError {
         scene: String,
         /// The geometry error.
         source: GeometryError,
+    },
+    /// The focal file of `focal_solver = "external"` is unusable or was made
+    /// for other hypotheses.
+    #[error("scene `{scene}`: focal file: {message}")]
+    FocalFile {
+        /// Scene name.
+        scene: String,
+        /// What is wrong, naming the file, the line and the field.
+        message: String,
     },
     /// The clustering rejected its input.
     #[error("scene `{scene}`: clustering: {source}")]
@@ -218,12 +228,15 @@ fn f_avg((f1, f2): (f64, f64)) -> f64 {
 /// Focal lengths of one hypothesis (step 4), principal points at the origin;
 /// `weight_sets` are the multi-start weights of the robust solver. The flag
 /// is true when the focals are the prior standing in for a failed solve.
+/// `(f1, f2)` of one hypothesis and whether they are the prior.
+type FocalAnswer = ((f64, f64), bool);
+
 fn estimate_focals(
     f: &Matrix3<f64>,
     config: &PipelineConfig,
     weight_sets: &[FocalWeights],
     f_prior: f64,
-) -> Option<((f64, f64), bool)> {
+) -> Option<FocalAnswer> {
     let (focals, from_prior) = match config.focal_solver {
         FocalSolver::Kocur => focal::robust_focals_multi_start(
             f,
@@ -239,6 +252,8 @@ fn estimate_focals(
             Err(_) if config.focal_failure == OnFailure::Prior => Some(((f_prior, f_prior), true)),
             Err(_) => None,
         },
+        // Read for all hypotheses at once by `external_focals`.
+        FocalSolver::External => None,
     }?;
     if config.truncate_focals {
         Some(((focals.0.trunc(), focals.1.trunc()), from_prior))
@@ -371,8 +386,9 @@ pub struct HypothesisFocals {
 /// hypotheses ([`hypothesis_key`]) and the scene's focal prior.
 pub fn focal_key(config: &PipelineConfig) -> String {
     format!(
-        "solver={:?} weights={:?} max_iters={} failure={:?} truncate={}",
+        "solver={:?} file={:?} weights={:?} max_iters={} failure={:?} truncate={}",
         config.focal_solver,
+        config.focal_file,
         config.weight_sets.sets(),
         config.max_iters,
         config.focal_failure,
@@ -458,30 +474,88 @@ pub fn generate_hypotheses(
 /// Step 4 of Algorithm 1: the focal lengths of every hypothesis with a
 /// model, in parallel, with the scene's focal prior and `config`'s solver
 /// ([`focal_key`]).
+///
+/// Errors only for `focal_solver = "external"`: an unusable focal file, a
+/// hypothesis missing from it, or one whose F differs from the file's
+/// ([`PipelineError::FocalFile`]).
 pub fn estimate_hypothesis_focals(
     scene: &Scene,
     config: &PipelineConfig,
     hypotheses: &GeneratedHypotheses,
-) -> HypothesisFocals {
+) -> Result<HypothesisFocals, PipelineError> {
     let t = Instant::now();
     let f_prior = scene.focal_prior();
-    let weight_sets = config.weight_sets.sets();
-    let estimates: Vec<Option<((f64, f64), bool)>> = hypotheses
-        .models
-        .par_iter()
-        .map(|model| {
-            let f = model.as_ref()?;
-            estimate_focals(f, config, &weight_sets, f_prior)
-        })
-        .collect();
-    HypothesisFocals {
+    let estimates: Vec<Option<FocalAnswer>> = match config.focal_solver {
+        FocalSolver::External => external_focals(scene, config, hypotheses)?,
+        _ => {
+            let weight_sets = config.weight_sets.sets();
+            hypotheses
+                .models
+                .par_iter()
+                .map(|model| {
+                    let f = model.as_ref()?;
+                    estimate_focals(f, config, &weight_sets, f_prior)
+                })
+                .collect()
+        }
+    };
+    Ok(HypothesisFocals {
         focals: estimates.iter().map(|e| e.map(|(f, _)| f)).collect(),
         from_prior: estimates
             .iter()
             .map(|e| e.is_some_and(|(_, p)| p))
             .collect(),
         seconds: seconds_since(t),
+    })
+}
+
+/// The focals of every hypothesis with a model from `config.focal_file`
+/// (see [`crate::focal_file`]): as given, truncated when `truncate_focals`,
+/// none when not finite; an answer equal to the prior counts as a prior
+/// answer. Each hypothesis must be in the file and, when the file holds F,
+/// match it.
+fn external_focals(
+    scene: &Scene,
+    config: &PipelineConfig,
+    hypotheses: &GeneratedHypotheses,
+) -> Result<Vec<Option<FocalAnswer>>, PipelineError> {
+    let path = focal_file::focal_file_path(&config.focal_file, config.seed);
+    let error = |message: String| PipelineError::FocalFile {
+        scene: scene.name.clone(),
+        message,
+    };
+    let rows = focal_file::read_scene_focals(&path, &scene.name).map_err(error)?;
+    let f_prior = scene.focal_prior();
+    let mut estimates = Vec::with_capacity(hypotheses.models.len());
+    for (j, model) in hypotheses.models.iter().enumerate() {
+        let Some(f) = model else {
+            estimates.push(None);
+            continue;
+        };
+        let row = rows.get(&j).ok_or_else(|| {
+            error(format!(
+                "{}: no row for hypothesis {j} (write the hypotheses of this config with `sctl hypotheses`)",
+                path.display()
+            ))
+        })?;
+        if let Some(theirs) = &row.model {
+            if !focal_file::same_model(f, theirs, 1e-6) {
+                return Err(error(format!(
+                    "{}: hypothesis {j} has another F than this config generates \
+                     (the file was made for other hypotheses: seed, M, thr_px, ...?)",
+                    path.display()
+                )));
+            }
+        }
+        let (f1, f2) = row.focals;
+        let focals = match config.truncate_focals {
+            true => (f1.trunc(), f2.trunc()),
+            false => (f1, f2),
+        };
+        let finite = focals.0.is_finite() && focals.1.is_finite();
+        estimates.push(finite.then_some((focals, focals == (f_prior, f_prior))));
     }
+    Ok(estimates)
 }
 
 /// Segments one scene by Algorithm 1 (method.md steps 1–9) with `config`.
@@ -505,7 +579,8 @@ pub fn segment(scene: &Scene, config: &PipelineConfig) -> Result<Segmentation, P
     let started = Instant::now();
     let hypotheses = generate_hypotheses(scene, config)?;
     let focals = (config.method == Method::Semical)
-        .then(|| estimate_hypothesis_focals(scene, config, &hypotheses));
+        .then(|| estimate_hypothesis_focals(scene, config, &hypotheses))
+        .transpose()?;
     let mut segmentation = segment_with(scene, config, &hypotheses, focals.as_ref())?;
     segmentation.timings.total = seconds_since(started);
     Ok(segmentation)

@@ -77,7 +77,7 @@ pub fn filter_quality(
         ..config.clone()
     };
     let generated = generate_hypotheses(scene, &config)?;
-    let focals = estimate_hypothesis_focals(scene, &config, &generated);
+    let focals = estimate_hypothesis_focals(scene, &config, &generated)?;
     let segmentation = segment_with(scene, &config, &generated, Some(&focals))?;
     let tau = config.thr_px * config.thr_px;
     let mut residuals = vec![0.0; scene.len()];

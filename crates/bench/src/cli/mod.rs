@@ -4,6 +4,7 @@ pub mod compare;
 pub mod filter_quality;
 pub mod focal;
 pub mod gt_focals;
+pub mod hypotheses;
 pub mod inspect;
 pub mod merge;
 pub mod metrics;
