@@ -4,6 +4,7 @@ implementation computes them (results/README.md, "PoseLib's answers on our
 hypotheses").
 
 Usage: python3 scripts/poselib_focals.py HYPS.csv FOCALS.csv [hopef]
+       python3 scripts/poselib_focals.py summary F_PRIOR TAU_RANGE FOCALS.csv...
 
 HYPS.csv comes from `sctl hypotheses CONFIG --out HYPS.csv` (columns scene,
 hypothesis, f_prior, F00..F22). For every hypothesis this runs PoseLib's
@@ -18,17 +19,56 @@ to its hypotheses). kruppa_residual = max |g_i(x)| / max |g_i(p)| at the
 answer x (method.md step 4): above 1e-6 the answer is no solution of the
 Kruppa equations (the fixture's `infeasible`); 1 for the prior itself.
 
+`summary` prints what the answers of FOCALS.csv are: the prior (f1 = f2 =
+F_PRIOR, exactly and after truncation to integers), non-finite, solutions of
+the Kruppa equations (kruppa_residual <= 1e-6) and non-solutions, each also
+counted inside the band |f_avg - F_PRIOR| <= TAU_RANGE * F_PRIOR, f1, f2 > 0
+(standard library only).
+
 Needs `pip install poselib==2.0.5 numpy` (the version the thesis tables and
 the fixtures were made with).
 """
 import csv
+import math
 import sys
+from collections import Counter
 
-import numpy as np
-import poselib
+try:
+    import numpy as np
+    import poselib
+except ImportError:  # `summary` needs neither
+    np = poselib = None
 
 ADELAIDE = [(1e-3, 1, 1e-3, 1), (5e-4, 1, 5e-4, 1), (1e-4, 1, 1e-4, 1), (5e-4, 2, 5e-4, 2)]
 HOPEF = ADELAIDE + [(1e-3, 2, 1e-3, 2), (1e-4, 3, 1e-4, 3)]
+
+
+def summary(f_prior, tau_range, paths):
+    f_prior, tau_range = float(f_prior), float(tau_range)
+    counts = Counter()
+    for path in paths:
+        with open(path, newline="") as f:
+            for row in csv.DictReader(f):
+                f1, f2 = float(row["f1"]), float(row["f2"])
+                counts["answers"] += 1
+                if not (math.isfinite(f1) and math.isfinite(f2)):
+                    counts["non-finite"] += 1
+                    continue
+                if f1 == f2 == f_prior:
+                    counts["prior, exactly"] += 1
+                    continue
+                if math.trunc(f1) == math.trunc(f2) == f_prior:
+                    counts["prior after truncation"] += 1
+                    continue
+                kind = "solution" if float(row["kruppa_residual"]) <= 1e-6 else "non-solution"
+                band = f1 > 0 and f2 > 0 and abs((f1 + f2) / 2 - f_prior) <= tau_range * f_prior
+                counts[kind] += 1
+                counts[f"{kind}, in the band"] += band
+    total = counts.pop("answers")
+    print(f"{total} answers")
+    for key in ["prior, exactly", "prior after truncation", "non-solution", "non-solution, in the band",
+                "solution", "solution, in the band", "non-finite"]:
+        print(f"{key:28} {counts[key]:8} {100 * counts[key] / total:6.2f} %")
 
 
 def kruppa(fundamental, x):
@@ -70,6 +110,9 @@ def best_answer(fundamental, f_prior, weight_sets, max_iters):
 
 
 def main(hyps_path, out_path, dataset="adelaidermf"):
+    if poselib is None:
+        sys.exit("needs PoseLib and NumPy: pip install poselib==2.0.5 numpy")
+
     weight_sets, max_iters = (HOPEF, 120) if dataset == "hopef" else (ADELAIDE, 100)
     names = [f"F{i}{j}" for i in range(3) for j in range(3)]
     with open(hyps_path, newline="") as f_in, open(out_path, "w", newline="") as f_out:
@@ -86,6 +129,9 @@ def main(hyps_path, out_path, dataset="adelaidermf"):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) not in (3, 4):
+    if len(sys.argv) >= 5 and sys.argv[1] == "summary":
+        summary(sys.argv[2], sys.argv[3], sys.argv[4:])
+    elif len(sys.argv) in (3, 4):
+        main(*sys.argv[1:])
+    else:
         sys.exit(__doc__)
-    main(*sys.argv[1:])
