@@ -11,7 +11,8 @@
 //! CSV files are rewritten in unit order, so that their bytes do not depend
 //! on the thread count, on interruptions or on sharding.
 
-use crate::config::{ExperimentConfig, PipelineConfig, PlotFormat};
+use crate::config::{ExperimentConfig, FocalSolver, Method, PipelineConfig, PlotFormat};
+use crate::focal_file;
 use crate::output::{
     params_file_name, per_scene_header, timing_fields, timings_header, write_atomic, CsvAppender,
     CsvTable, SceneResult, StageTimings, CONFIG_FILE, PER_SCENE_FILE, PLOTS_DIR, REPORT_FILE,
@@ -197,6 +198,24 @@ impl<'a> UnitIndex<'a> {
     }
 }
 
+/// Fails before any unit runs when a semical combination reads its focal
+/// lengths from a file (`focal_solver = "external"`) that is missing or
+/// lacks a required column: otherwise every scene would fail alike.
+fn check_focal_files(plan: &SweepPlan) -> Result<()> {
+    for combination in &plan.combinations {
+        let p = &combination.pipeline;
+        if p.method == Method::Semical && p.focal_solver == FocalSolver::External {
+            let path = focal_file::focal_file_path(&p.focal_file, p.seed);
+            focal_file::check_focal_file(&path).map_err(|e| {
+                anyhow::anyhow!(
+                    "focal_file: {e} (make it for these hypotheses: `sctl hypotheses`, then the external solver)"
+                )
+            })?;
+        }
+    }
+    Ok(())
+}
+
 /// Runs `config` with `evaluator` into `options.out_dir`.
 pub fn run_experiment(
     config: &ExperimentConfig,
@@ -206,6 +225,7 @@ pub fn run_experiment(
     let started = Instant::now();
     let plan =
         SweepPlan::expand(config).map_err(|e| anyhow::anyhow!("{}: {}", e.key, e.message))?;
+    check_focal_files(&plan)?;
     let scenes = evaluator.scene_names();
     let resolved = resolved_config(config, &scenes).to_toml();
     let dir = &options.out_dir;

@@ -33,6 +33,29 @@ pub fn focal_file_path(template: &str, seed: u64) -> PathBuf {
     PathBuf::from(template.replace("{seed}", &seed.to_string()))
 }
 
+/// The columns every focal file has.
+pub const REQUIRED_COLUMNS: [&str; 4] = ["scene", "hypothesis", "f1", "f2"];
+
+/// Checks, before a run, that the focal file at `path` can be read and has
+/// the [`REQUIRED_COLUMNS`].
+///
+/// # Errors
+/// A message naming the file and what is wrong.
+pub fn check_focal_file(path: &Path) -> Result<(), String> {
+    let shown = path.display();
+    let mut reader = csv::Reader::from_path(path).map_err(|e| format!("{shown}: {e}"))?;
+    let header = reader
+        .headers()
+        .map_err(|e| format!("{shown}: header: {e}"))?;
+    match REQUIRED_COLUMNS
+        .iter()
+        .find(|c| !header.iter().any(|h| h == **c))
+    {
+        Some(missing) => Err(format!("{shown}: no column `{missing}`")),
+        None => Ok(()),
+    }
+}
+
 /// The rows of `scene` in the focal file at `path`, by hypothesis index.
 ///
 /// # Errors

@@ -119,4 +119,20 @@ fn writes_the_pipelines_hypotheses_and_reads_focals_back() {
         })
         .count();
     assert_eq!(refused, scenes.len(), "{per_scene}");
+
+    // No file for the seed: the run stops before any scene, naming it.
+    let missing = std::fs::read_to_string(&exp)
+        .unwrap()
+        .replace("seed = 4", "seed = 5");
+    std::fs::write(&exp, missing).unwrap();
+    Command::cargo_bin("sctl")
+        .unwrap()
+        .args(["run", "--quiet", "--out"])
+        .arg(dir.path().join("run5"))
+        .arg(&exp)
+        .assert()
+        .failure()
+        .stderr(predicates::str::contains("focal_file: "))
+        .stderr(predicates::str::contains("focals_5.csv"));
+    assert!(!dir.path().join("run5").join("per_scene.csv").exists());
 }
