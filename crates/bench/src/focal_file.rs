@@ -14,6 +14,12 @@ use std::path::{Path, PathBuf};
 
 use nalgebra::Matrix3;
 
+/// The column names of a fundamental matrix in a CSV, row-major: `F00`,
+/// `F01`, …, `F22` (entry `k` is `F[(k / 3, k % 3)]`).
+pub const F_COLUMNS: [&str; 9] = [
+    "F00", "F01", "F02", "F10", "F11", "F12", "F20", "F21", "F22",
+];
+
 /// The answer of the external solver for one hypothesis.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ExternalFocal {
@@ -75,9 +81,7 @@ pub fn read_scene_focals(
     let required = |name: &str| column(name).ok_or_else(|| format!("{shown}: no column `{name}`"));
     let (scene_col, hyp_col) = (required("scene")?, required("hypothesis")?);
     let (f1_col, f2_col) = (required("f1")?, required("f2")?);
-    let f_cols: Option<Vec<usize>> = (0..9)
-        .map(|k| column(&format!("F{}{}", k / 3, k % 3)))
-        .collect();
+    let f_cols: Option<Vec<usize>> = F_COLUMNS.iter().map(|name| column(name)).collect();
     let mut rows = HashMap::new();
     for (i, record) in reader.records().enumerate() {
         let line = i + 2;
@@ -98,8 +102,8 @@ pub fn read_scene_focals(
         let model = match &f_cols {
             Some(cols) => {
                 let mut m = Matrix3::zeros();
-                for (k, &col) in cols.iter().enumerate() {
-                    m[(k / 3, k % 3)] = field(col, &format!("F{}{}", k / 3, k % 3))?;
+                for (k, (&col, name)) in cols.iter().zip(F_COLUMNS).enumerate() {
+                    m[(k / 3, k % 3)] = field(col, name)?;
                 }
                 Some(m)
             }

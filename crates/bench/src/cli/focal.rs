@@ -6,6 +6,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context};
+use bench::focal_file::F_COLUMNS;
 use focal::{bougnoux_per_image, robust_focals, FocalWeights, RobustFocalParams};
 use nalgebra::Matrix3;
 
@@ -91,10 +92,6 @@ struct Columns {
     w_pp2: Option<usize>,
     max_iters: Option<usize>,
 }
-
-const F_COLUMNS: [&str; 9] = [
-    "F00", "F01", "F02", "F10", "F11", "F12", "F20", "F21", "F22",
-];
 
 fn find_columns(path: &Path, headers: &csv::StringRecord) -> anyhow::Result<Columns> {
     let find = |name: &str| headers.iter().position(|h| h.trim() == name);

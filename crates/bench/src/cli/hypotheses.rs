@@ -8,7 +8,7 @@
 use anyhow::{Context, Result};
 use bench::config::ExperimentConfig;
 use bench::dataset::load_scenes;
-use bench::focal_file::focal_file_path;
+use bench::focal_file::{focal_file_path, F_COLUMNS};
 use bench::pipeline::generate_hypotheses;
 use std::io::Write;
 use std::path::PathBuf;
@@ -29,9 +29,6 @@ pub struct Args {
     pub data_root: Option<PathBuf>,
 }
 
-/// The CSV header.
-pub const HEADER: &str = "scene,hypothesis,f_prior,F00,F01,F02,F10,F11,F12,F20,F21,F22";
-
 /// Writes every refined hypothesis of every scene.
 pub fn run(args: Args) -> Result<()> {
     let mut config = ExperimentConfig::load(&args.config)?;
@@ -47,7 +44,7 @@ pub fn run(args: Args) -> Result<()> {
     }
     let file = std::fs::File::create(&path).with_context(|| format!("{}", path.display()))?;
     let mut out = std::io::BufWriter::new(file);
-    writeln!(out, "{HEADER}")?;
+    writeln!(out, "scene,hypothesis,f_prior,{}", F_COLUMNS.join(","))?;
     for scene in &scenes {
         let generated = generate_hypotheses(scene, pipeline)?;
         let f_prior = scene.focal_prior();
