@@ -42,24 +42,37 @@ pub fn focal_file_path(template: &str, seed: u64) -> PathBuf {
 /// The columns every focal file has.
 pub const REQUIRED_COLUMNS: [&str; 4] = ["scene", "hypothesis", "f1", "f2"];
 
+/// Where the columns of a focal file are.
+struct Columns {
+    /// Of [`REQUIRED_COLUMNS`], in that order.
+    required: [usize; 4],
+    /// Of [`F_COLUMNS`], when the file has all of them.
+    model: Option<Vec<usize>>,
+}
+
+/// Opens the focal file at `path` and finds its columns.
+fn open(path: &Path) -> Result<(csv::Reader<std::fs::File>, Columns), String> {
+    let shown = path.display();
+    let mut reader = csv::Reader::from_path(path).map_err(|e| format!("{shown}: {e}"))?;
+    let header = reader
+        .headers()
+        .map_err(|e| format!("{shown}: header: {e}"))?;
+    let column = |name: &str| header.iter().position(|h| h == name);
+    let mut required = [0; 4];
+    for (slot, name) in required.iter_mut().zip(REQUIRED_COLUMNS) {
+        *slot = column(name).ok_or_else(|| format!("{shown}: no column `{name}`"))?;
+    }
+    let model = F_COLUMNS.iter().map(|name| column(name)).collect();
+    Ok((reader, Columns { required, model }))
+}
+
 /// Checks, before a run, that the focal file at `path` can be read and has
 /// the [`REQUIRED_COLUMNS`].
 ///
 /// # Errors
 /// A message naming the file and what is wrong.
 pub fn check_focal_file(path: &Path) -> Result<(), String> {
-    let shown = path.display();
-    let mut reader = csv::Reader::from_path(path).map_err(|e| format!("{shown}: {e}"))?;
-    let header = reader
-        .headers()
-        .map_err(|e| format!("{shown}: header: {e}"))?;
-    match REQUIRED_COLUMNS
-        .iter()
-        .find(|c| !header.iter().any(|h| h == **c))
-    {
-        Some(missing) => Err(format!("{shown}: no column `{missing}`")),
-        None => Ok(()),
-    }
+    open(path).map(|_| ())
 }
 
 /// The rows of `scene` in the focal file at `path`, by hypothesis index.
@@ -72,16 +85,8 @@ pub fn read_scene_focals(
     scene: &str,
 ) -> Result<HashMap<usize, ExternalFocal>, String> {
     let shown = path.display();
-    let mut reader = csv::Reader::from_path(path).map_err(|e| format!("{shown}: {e}"))?;
-    let header = reader
-        .headers()
-        .map_err(|e| format!("{shown}: header: {e}"))?
-        .clone();
-    let column = |name: &str| header.iter().position(|h| h == name);
-    let required = |name: &str| column(name).ok_or_else(|| format!("{shown}: no column `{name}`"));
-    let (scene_col, hyp_col) = (required("scene")?, required("hypothesis")?);
-    let (f1_col, f2_col) = (required("f1")?, required("f2")?);
-    let f_cols: Option<Vec<usize>> = F_COLUMNS.iter().map(|name| column(name)).collect();
+    let (mut reader, columns) = open(path)?;
+    let [scene_col, hyp_col, f1_col, f2_col] = columns.required;
     let mut rows = HashMap::new();
     for (i, record) in reader.records().enumerate() {
         let line = i + 2;
@@ -99,7 +104,7 @@ pub fn read_scene_focals(
         let hypothesis: usize = hyp_text.parse().map_err(|_| {
             format!("{shown}: line {line}: field `hypothesis`: `{hyp_text}` is not an index")
         })?;
-        let model = match &f_cols {
+        let model = match &columns.model {
             Some(cols) => {
                 let mut m = Matrix3::zeros();
                 for (k, (&col, name)) in cols.iter().zip(F_COLUMNS).enumerate() {
