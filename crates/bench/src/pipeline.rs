@@ -225,12 +225,22 @@ fn f_avg((f1, f2): (f64, f64)) -> f64 {
     0.5 * (f1 + f2)
 }
 
-/// Focal lengths of one hypothesis (step 4), principal points at the origin;
-/// `weight_sets` are the multi-start weights of the robust solver. The flag
-/// is true when the focals are the prior standing in for a failed solve.
 /// `(f1, f2)` of one hypothesis and whether they are the prior.
 type FocalAnswer = ((f64, f64), bool);
 
+/// `(f1, f2)` as the pipeline uses them: truncated to integers when
+/// `truncate_focals` (the reference code), else unchanged.
+fn focals_as_used(focals: (f64, f64), config: &PipelineConfig) -> (f64, f64) {
+    if config.truncate_focals {
+        (focals.0.trunc(), focals.1.trunc())
+    } else {
+        focals
+    }
+}
+
+/// Focal lengths of one hypothesis (step 4), principal points at the origin;
+/// `weight_sets` are the multi-start weights of the robust solver. The flag
+/// is true when the focals are the prior standing in for a failed solve.
 fn estimate_focals(
     f: &Matrix3<f64>,
     config: &PipelineConfig,
@@ -255,11 +265,7 @@ fn estimate_focals(
         // Read for all hypotheses at once by `external_focals`.
         FocalSolver::External => None,
     }?;
-    if config.truncate_focals {
-        Some(((focals.0.trunc(), focals.1.trunc()), from_prior))
-    } else {
-        Some((focals, from_prior))
-    }
+    Some((focals_as_used(focals, config), from_prior))
 }
 
 /// The focal filter of steps 5–6 over the refined hypotheses (`refined[k]`
@@ -547,11 +553,7 @@ fn external_focals(
                 )));
             }
         }
-        let (f1, f2) = row.focals;
-        let focals = match config.truncate_focals {
-            true => (f1.trunc(), f2.trunc()),
-            false => (f1, f2),
-        };
+        let focals = focals_as_used(row.focals, config);
         let finite = focals.0.is_finite() && focals.1.is_finite();
         estimates.push(finite.then_some((focals, focals == (f_prior, f_prior))));
     }
