@@ -6,23 +6,18 @@
 //! sets and `max_iters`, failures reported) and by Bougnoux's formula.
 
 use anyhow::{Context, Result};
-use bench::config::ExperimentConfig;
-use bench::dataset::load_scenes;
 use bench::evaluate::motion_indices;
 use bench::pipeline::fit_cluster;
 use focal::OnFailure;
 use geometry::Correspondences;
 use std::io::Write;
-use std::path::PathBuf;
 
 /// Options of `sctl gt-focals`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// The experiment file whose dataset and focal-solver settings to use.
-    pub config: PathBuf,
-    /// Data root [default: $SCTL_DATA_ROOT, else the config's data_root, else datasets/].
-    #[arg(long, value_name = "DIR")]
-    pub data_root: Option<PathBuf>,
+    /// The config and its scenes.
+    #[command(flatten)]
+    pub input: super::ConfigScenes,
 }
 
 /// The CSV header.
@@ -34,9 +29,7 @@ fn cell(v: Option<f64>) -> String {
 
 /// Prints one row per (scene, ground-truth motion).
 pub fn run(args: Args) -> Result<()> {
-    let config = ExperimentConfig::load(&args.config)?;
-    let scenes = load_scenes(&config.dataset, args.data_root.as_deref(), false)
-        .with_context(|| format!("{}: [dataset]", args.config.display()))?;
+    let (config, scenes) = args.input.load()?;
     let pipeline = &config.pipeline;
     let weight_sets = pipeline.weight_sets.sets();
     let mut out = std::io::stdout().lock();

@@ -6,38 +6,31 @@
 //! (`scripts/poselib_focals.py` runs PoseLib on it).
 
 use anyhow::{Context, Result};
-use bench::config::ExperimentConfig;
-use bench::dataset::load_scenes;
 use bench::focal_file::{focal_file_path, F_COLUMNS};
 use bench::pipeline::generate_hypotheses;
 use std::io::Write;
-use std::path::PathBuf;
 
 /// Options of `sctl hypotheses`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// The experiment file whose dataset and [pipeline] parameters to use.
-    pub config: PathBuf,
+    /// The config and its scenes.
+    #[command(flatten)]
+    pub input: super::ConfigScenes,
     /// Output CSV; `{seed}` in it is replaced by the seed.
     #[arg(long, value_name = "FILE")]
     pub out: String,
     /// Sampling seed [default: the config's `seed`].
     #[arg(long)]
     pub seed: Option<u64>,
-    /// Data root [default: $SCTL_DATA_ROOT, else the config's data_root, else datasets/].
-    #[arg(long, value_name = "DIR")]
-    pub data_root: Option<PathBuf>,
 }
 
 /// Writes every refined hypothesis of every scene.
 pub fn run(args: Args) -> Result<()> {
-    let mut config = ExperimentConfig::load(&args.config)?;
+    let (mut config, scenes) = args.input.load()?;
     if let Some(seed) = args.seed {
         config.pipeline.seed = seed;
     }
     let pipeline = &config.pipeline;
-    let scenes = load_scenes(&config.dataset, args.data_root.as_deref(), false)
-        .with_context(|| format!("{}: [dataset]", args.config.display()))?;
     let path = focal_file_path(&args.out, pipeline.seed);
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).with_context(|| format!("{}", dir.display()))?;
