@@ -1,13 +1,11 @@
 //! `sctl compare` on two hand-written `per_scene.csv` files.
 
-use assert_cmd::Command;
+mod support;
+use support::sctl;
+
 use bench::output::PER_SCENE_FIELDS;
 use predicates::prelude::*;
 use std::path::Path;
-
-fn sctl() -> Command {
-    Command::cargo_bin("sctl").unwrap()
-}
 
 /// A `per_scene.csv` with one parameter column `method` and the given
 /// (method, scene, me) rows.

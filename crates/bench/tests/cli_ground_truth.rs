@@ -2,25 +2,17 @@
 //! ground-truth motion, equal to the library's answers on the F fitted to
 //! that motion; bad input) and `sctl filter-quality` (counts that add up).
 
-use assert_cmd::Command;
+mod support;
+use support::{quickstart, sctl};
+
 use bench::config::ExperimentConfig;
 use bench::pipeline::fit_cluster;
 use geometry::Correspondences;
 use predicates::prelude::*;
-use std::path::PathBuf;
-
-fn quickstart() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../configs/quickstart.toml")
-}
 
 /// What `sctl <subcommand> configs/quickstart.toml` prints (it must succeed).
 fn stdout_on_quickstart(subcommand: &str) -> String {
-    let assert = Command::cargo_bin("sctl")
-        .unwrap()
-        .arg(subcommand)
-        .arg(quickstart())
-        .assert()
-        .success();
+    let assert = sctl().arg(subcommand).arg(quickstart()).assert().success();
     String::from_utf8(assert.get_output().stdout.clone()).unwrap()
 }
 
@@ -85,8 +77,7 @@ fn bench_header() -> &'static str {
 
 #[test]
 fn a_missing_config_is_an_error_naming_it() {
-    Command::cargo_bin("sctl")
-        .unwrap()
+    sctl()
         .args(["gt-focals", "no/such/config.toml"])
         .assert()
         .failure()

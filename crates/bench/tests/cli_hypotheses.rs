@@ -2,21 +2,18 @@
 //! hypotheses written are the pipeline's, and a focal file made from them
 //! drives `sctl run`.
 
-use assert_cmd::Command;
+mod support;
+use support::{quickstart, sctl};
+
 use bench::config::ExperimentConfig;
 use bench::focal_file::same_model;
 use bench::pipeline::generate_hypotheses;
 use nalgebra::Matrix3;
-use std::path::{Path, PathBuf};
-
-fn quickstart() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../configs/quickstart.toml")
-}
+use std::path::Path;
 
 /// `sctl run --out OUT EXP` (it must succeed); returns `per_scene.csv`.
 fn run(exp: &Path, out: &Path) -> String {
-    Command::cargo_bin("sctl")
-        .unwrap()
+    sctl()
         .args(["run", "--quiet", "--out"])
         .arg(out)
         .arg(exp)
@@ -29,8 +26,7 @@ fn run(exp: &Path, out: &Path) -> String {
 fn writes_the_pipelines_hypotheses_and_reads_focals_back() {
     let dir = tempfile::tempdir().unwrap();
     let template = dir.path().join("hyps_{seed}.csv");
-    Command::cargo_bin("sctl")
-        .unwrap()
+    sctl()
         .args(["hypotheses", "--seed", "3", "--out"])
         .arg(&template)
         .arg(quickstart())
@@ -125,8 +121,7 @@ fn writes_the_pipelines_hypotheses_and_reads_focals_back() {
         .unwrap()
         .replace("seed = 4", "seed = 5");
     std::fs::write(&exp, missing).unwrap();
-    Command::cargo_bin("sctl")
-        .unwrap()
+    sctl()
         .args(["run", "--quiet", "--out"])
         .arg(dir.path().join("run5"))
         .arg(&exp)

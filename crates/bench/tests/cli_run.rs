@@ -2,7 +2,9 @@
 //! and 2 threads, after an interrupted run resumed, and after shards merged;
 //! one-line errors naming the file and key for bad configs.
 
-use assert_cmd::Command;
+mod support;
+use support::sctl;
+
 use predicates::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -25,10 +27,6 @@ const COMPARED: [&str; 4] = [
     "wilcoxon.csv",
     "config.toml",
 ];
-
-fn sctl() -> Command {
-    Command::cargo_bin("sctl").unwrap()
-}
 
 struct Fixture {
     _root: tempfile::TempDir,

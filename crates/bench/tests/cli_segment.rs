@@ -1,15 +1,13 @@
 //! `sctl segment` on a user's match file.
 
-use assert_cmd::Command;
+mod support;
+use support::sctl;
+
 use bench::metrics::ClusteringMetrics;
 use datasets::synthetic::{generate_hopef_scene, Preset};
 use predicates::prelude::*;
 use std::fmt::Write as _;
 use std::path::Path;
-
-fn sctl() -> Command {
-    Command::cargo_bin("sctl").unwrap()
-}
 
 /// Writes a synthetic two-motion scene as `x1,y1,x2,y2,label` and returns
 /// its ground-truth labels.

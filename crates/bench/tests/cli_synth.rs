@@ -2,14 +2,12 @@
 //! and `sctl inspect` read back, refuses to overwrite, takes parameter
 //! overrides.
 
-use assert_cmd::Command;
+mod support;
+use support::sctl;
+
 use datasets::hopef::{HopeF, LoadOptions, Selection};
 use datasets::synthetic::Preset;
 use predicates::prelude::*;
-
-fn sctl() -> Command {
-    Command::cargo_bin("sctl").unwrap()
-}
 
 #[test]
 fn quick_preset_round_trips_and_inspects() {

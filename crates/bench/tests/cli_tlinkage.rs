@@ -1,7 +1,9 @@
 //! `sctl tlinkage` from the outside: labels of known matrices, agreement with
 //! the library, and one clear error line on bad input.
 
-use assert_cmd::Command;
+mod support;
+use support::sctl;
+
 use predicates::prelude::*;
 use std::io::Write;
 use tempfile::NamedTempFile;
@@ -10,10 +12,6 @@ fn csv_file(text: &str) -> NamedTempFile {
     let mut file = NamedTempFile::new().unwrap();
     file.write_all(text.as_bytes()).unwrap();
     file
-}
-
-fn sctl() -> Command {
-    Command::cargo_bin("sctl").unwrap()
 }
 
 /// Two blocks of preferences, interleaved: points 0, 2, 4 prefer hypotheses

@@ -1,21 +1,17 @@
 //! `focal_solver = "external"`: focal lengths read from a file written for
 //! the hypotheses of `sctl hypotheses`.
 
+mod support;
+use support::quick_scene;
+
 use bench::config::{FocalSolver, Method, OnFailure, PipelineConfig};
 use bench::pipeline::{
     estimate_hypothesis_focals, generate_hypotheses, segment, segment_with, PipelineError,
 };
-use datasets::synthetic::{generate_hopef_scene, Preset};
 use datasets::Scene;
 use nalgebra::Matrix3;
 use std::fmt::Write;
 use std::path::Path;
-
-fn quick_scene(category: u32, index: u32) -> Scene {
-    generate_hopef_scene(&Preset::Quick.params(), 1, category, index)
-        .unwrap()
-        .scene
-}
 
 fn kocur() -> PipelineConfig {
     PipelineConfig {

@@ -1,17 +1,13 @@
 //! Algorithm 1 end to end on synthetic scenes of the `quick` preset.
 
+mod support;
+use support::quick_scene;
+
 use bench::config::{EightPoint, FocalSolver, LocalTest, Method, OnFailure, PipelineConfig};
 use bench::metrics::ClusteringMetrics;
 use bench::pipeline::{segment, HypothesisStatus, PipelineError, Segmentation};
 use clustering::Linkage;
-use datasets::synthetic::{generate_hopef_scene, Preset};
 use datasets::Scene;
-
-fn quick_scene(category: u32, index: u32) -> Scene {
-    generate_hopef_scene(&Preset::Quick.params(), 1, category, index)
-        .unwrap()
-        .scene
-}
 
 fn config(method: Method) -> PipelineConfig {
     PipelineConfig {
