@@ -132,21 +132,6 @@ impl Quartic2 {
         self.eval_with_grad(t1, t2).0
     }
 
-    /// Coefficients (ascending powers of t1) of the polynomial in t1 obtained
-    /// by fixing t2 = z (complex).
-    fn coefs_in_t1_complex(&self, z: C64) -> [C64; 5] {
-        let mut out = [C64::new(0.0, 0.0); 5];
-        for (i, o) in out.iter_mut().enumerate() {
-            // Horner in t2 over the coefficients of t1^i.
-            let mut acc = C64::new(0.0, 0.0);
-            for j in (0..5 - i).rev() {
-                acc = acc * z + self.0[i][j];
-            }
-            *o = acc;
-        }
-        out
-    }
-
     /// Coefficients (ascending powers of t1) with t2 fixed to a real value.
     fn coefs_in_t1(&self, t2: f64) -> [f64; 5] {
         let mut out = [0.0; 5];
@@ -161,109 +146,251 @@ impl Quartic2 {
     }
 }
 
-/// Determinant of the 4x4 Bezout matrix of two univariate quartics (complex
-/// coefficients, ascending powers): it equals, up to sign, their resultant.
-///
-/// `(P(x)Q(y) - P(y)Q(x)) / (x - y) = sum_{i,j} B_ij x^i y^j` with
-/// `B_ij = sum_{q = max(0, i+j+1-4)}^{min(i,j)} (a_{i+j+1-q} b_q - a_q b_{i+j+1-q})`.
-fn bezout_det(a: &[C64; 5], b: &[C64; 5]) -> C64 {
-    let n: usize = 4;
-    // m_pq = a_p b_q - a_q b_p for p > q.
-    let mut mpq = [[C64::new(0.0, 0.0); 5]; 5];
-    for p in 1..5 {
-        for q in 0..p {
-            mpq[p][q] = a[p] * b[q] - a[q] * b[p];
-        }
-    }
-    let mut m = [[C64::new(0.0, 0.0); 4]; 4];
-    for i in 0..4usize {
-        for j in i..4usize {
-            let lo = (i + j + 1).saturating_sub(n);
-            let mut s = C64::new(0.0, 0.0);
-            for q in lo..=i {
-                s += mpq[i + j + 1 - q][q];
-            }
-            // The Bezout matrix is symmetric.
-            m[i][j] = s;
-            m[j][i] = s;
-        }
-    }
-    det4_complex(m)
-}
-
-/// Determinant of a complex 4x4 matrix by Gaussian elimination with partial
-/// pivoting.
-fn det4_complex(mut m: [[C64; 4]; 4]) -> C64 {
-    let mut det = C64::new(1.0, 0.0);
-    for col in 0..4 {
-        let mut piv = col;
-        let mut best = m[col][col].norm_sqr();
-        for (r, row) in m.iter().enumerate().skip(col + 1) {
-            let v = row[col].norm_sqr();
-            if v > best {
-                best = v;
-                piv = r;
-            }
-        }
-        if best == 0.0 {
-            return C64::new(0.0, 0.0);
-        }
-        if piv != col {
-            m.swap(piv, col);
-            det = -det;
-        }
-        let d = m[col][col];
-        det *= d;
-        let inv = C64::new(1.0, 0.0) / d;
-        for r in col + 1..4 {
-            let factor = m[r][col] * inv;
-            if factor.norm_sqr() == 0.0 {
-                continue;
-            }
-            let pivot_row = m[col];
-            for (entry, v) in m[r].iter_mut().zip(pivot_row.iter()).skip(col) {
-                *entry -= factor * v;
-            }
-        }
-    }
-    det
-}
-
 /// Number of interpolation nodes on the circle (a power of two > 2 * 16).
 const NODES: usize = 32;
 /// Degree bound of the resultant of two bivariate quartics (Bezout: 4 * 4).
 const RES_DEGREE: usize = 16;
+/// Lanes of the node-parallel evaluation in [`resultant_in_t2`]: the 17
+/// nodes `omega^0 … omega^16` padded to a multiple of four (the padding
+/// lanes repeat node 0 and are ignored).
+const LANES: usize = 20;
+
+/// One complex number per lane, in structure-of-arrays form.
+#[derive(Clone, Copy)]
+struct LaneComplex {
+    re: [f64; LANES],
+    im: [f64; LANES],
+}
+
+impl LaneComplex {
+    const ZERO: Self = Self {
+        re: [0.0; LANES],
+        im: [0.0; LANES],
+    };
+
+    /// `a * b - c * d` lane by lane, each product and the difference rounded
+    /// as `Complex<f64>` arithmetic rounds them.
+    #[inline(always)]
+    fn mul_sub_mul(a: &Self, b: &Self, c: &Self, d: &Self) -> Self {
+        let mut out = Self::ZERO;
+        for l in 0..LANES {
+            let xr = a.re[l] * b.re[l] - a.im[l] * b.im[l];
+            let xi = a.re[l] * b.im[l] + a.im[l] * b.re[l];
+            let yr = c.re[l] * d.re[l] - c.im[l] * d.im[l];
+            let yi = c.re[l] * d.im[l] + c.im[l] * d.re[l];
+            out.re[l] = xr - yr;
+            out.im[l] = xi - yi;
+        }
+        out
+    }
+}
 
 /// Coefficients (ascending powers of t2, length 17) of `det Bezout(P, Q)(t2)`,
 /// the resultant of P and Q with respect to t1, obtained by evaluating it at
 /// the 32nd roots of unity and applying the inverse DFT (exact for a
 /// polynomial of degree <= 16; the real polynomial's values at conjugate
 /// nodes are conjugate, so only 17 evaluations are needed).
+///
+/// At each node `z`, `P(., z)` and `Q(., z)` are univariate quartics in t1
+/// with complex coefficients `a`, `b` (ascending powers); their 4x4 Bezout
+/// matrix
+/// `(P(x)Q(y) - P(y)Q(x)) / (x - y) = sum_{i,j} B_ij x^i y^j`,
+/// `B_ij = sum_{q = max(0, i+j+1-4)}^{min(i,j)} (a_{i+j+1-q} b_q - a_q b_{i+j+1-q})`,
+/// has their resultant as determinant (up to sign), computed by Gaussian
+/// elimination with partial pivoting. The 17 nodes are evaluated side by
+/// side, one per lane, with every operation of the one-node computation
+/// (`tests::bezout_det_at`) in the same order, so the values are the same
+/// to the last bit.
 fn resultant_in_t2(p: &Quartic2, q: &Quartic2) -> [f64; RES_DEGREE + 1] {
-    let mut omega = [C64::new(0.0, 0.0); NODES];
-    for (k, w) in omega.iter_mut().enumerate() {
-        *w = unit_root(k);
+    #[cfg(target_arch = "x86_64")]
+    if avx2_available() {
+        // SAFETY: the CPU supports AVX2.
+        return unsafe { resultant_in_t2_avx2(p, q) };
     }
+    resultant_in_t2_lanes(p, q)
+}
+
+/// [`resultant_in_t2_lanes`] compiled for AVX2: the same operations in the
+/// same order (no fused multiply-add), so the same results.
+///
+/// # Safety
+/// The CPU must support AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn resultant_in_t2_avx2(p: &Quartic2, q: &Quartic2) -> [f64; RES_DEGREE + 1] {
+    resultant_in_t2_lanes(p, q)
+}
+
+#[inline(always)]
+fn resultant_in_t2_lanes(p: &Quartic2, q: &Quartic2) -> [f64; RES_DEGREE + 1] {
+    let mut z = LaneComplex::ZERO;
+    for l in 0..LANES {
+        let k = if l <= NODES / 2 { l } else { 0 };
+        z.re[l] = IDFT_COS[1][k];
+        z.im[l] = IDFT_SIN[1][k];
+    }
+    let a = coefs_in_t1_at_lanes(p, &z);
+    let b = coefs_in_t1_at_lanes(q, &z);
+    // m_pq = a_p b_q - a_q b_p for p > q.
+    let mut mpq = [[LaneComplex::ZERO; 5]; 5];
+    for pp in 1..5 {
+        for qq in 0..pp {
+            mpq[pp][qq] = LaneComplex::mul_sub_mul(&a[pp], &b[qq], &a[qq], &b[pp]);
+        }
+    }
+    let mut m = [[LaneComplex::ZERO; 4]; 4];
+    for i in 0..4usize {
+        for j in i..4usize {
+            let lo = (i + j + 1).saturating_sub(4);
+            let mut s = LaneComplex::ZERO;
+            for qq in lo..=i {
+                let t = &mpq[i + j + 1 - qq][qq];
+                for l in 0..LANES {
+                    s.re[l] += t.re[l];
+                    s.im[l] += t.im[l];
+                }
+            }
+            // The Bezout matrix is symmetric.
+            m[i][j] = s;
+            m[j][i] = s;
+        }
+    }
+    let det = det4_at_lanes(m);
     let mut values = [C64::new(0.0, 0.0); NODES];
     for k in 0..=NODES / 2 {
-        let z = omega[k];
-        let v = bezout_det(&p.coefs_in_t1_complex(z), &q.coefs_in_t1_complex(z));
+        let v = C64::new(det.re[k], det.im[k]);
         values[k] = v;
         if k != 0 && k != NODES / 2 {
             values[NODES - k] = v.conj();
         }
     }
-    let mut coefs = [0.0; RES_DEGREE + 1];
-    for (j, c) in coefs.iter_mut().enumerate() {
-        // Real part of (1/N) sum_k values[k] omega^{-jk}.
-        let mut acc = 0.0;
-        for (k, v) in values.iter().enumerate() {
-            let w = omega[(j * k) % NODES];
-            acc += v.re * w.re + v.im * w.im;
+    let mut acc = [0.0; LANES];
+    for (k, v) in values.iter().enumerate() {
+        // Real part of (1/N) sum_k values[k] omega^{-jk}, all j at once.
+        let (w_re, w_im) = (&IDFT_COS[k], &IDFT_SIN[k]);
+        for j in 0..LANES {
+            acc[j] += v.re * w_re[j] + v.im * w_im[j];
         }
-        *c = acc / NODES as f64;
+    }
+    let mut coefs = [0.0; RES_DEGREE + 1];
+    for (c, a) in coefs.iter_mut().zip(acc) {
+        *c = a / NODES as f64;
     }
     coefs
+}
+
+/// The coefficients (ascending powers of t1) of `P(., z)` at every lane's
+/// `z`, by Horner in t2 over the coefficients of each power of t1.
+#[inline(always)]
+fn coefs_in_t1_at_lanes(p: &Quartic2, z: &LaneComplex) -> [LaneComplex; 5] {
+    let mut out = [LaneComplex::ZERO; 5];
+    for (i, o) in out.iter_mut().enumerate() {
+        for j in (0..5 - i).rev() {
+            let c = p.0[i][j];
+            for l in 0..LANES {
+                let (ar, ai) = (o.re[l], o.im[l]);
+                o.re[l] = (ar * z.re[l] - ai * z.im[l]) + c;
+                o.im[l] = ar * z.im[l] + ai * z.re[l];
+            }
+        }
+    }
+    out
+}
+
+/// The determinant of a complex 4x4 matrix at every lane, by Gaussian
+/// elimination with partial pivoting (rows swapped lane by lane); a lane
+/// whose pivot column is zero has determinant exactly zero.
+// Lane loops are written by index, as in the rest of this computation, so
+// that every lane takes the same operations side by side.
+#[allow(clippy::needless_range_loop)]
+#[inline(always)]
+fn det4_at_lanes(mut m: [[LaneComplex; 4]; 4]) -> LaneComplex {
+    let mut det = LaneComplex::ZERO;
+    det.re = [1.0; LANES];
+    let mut singular = [false; LANES];
+    for col in 0..4 {
+        // The pivot row of each lane: the first of the largest |m_r,col|^2
+        // (row indices held as f64 so that the selects below vectorise).
+        let mut piv = [col as f64; LANES];
+        let mut best = [0.0; LANES];
+        for l in 0..LANES {
+            let e = (m[col][col].re[l], m[col][col].im[l]);
+            best[l] = e.0 * e.0 + e.1 * e.1;
+        }
+        for r in col + 1..4 {
+            for l in 0..LANES {
+                let e = (m[r][col].re[l], m[r][col].im[l]);
+                let v = e.0 * e.0 + e.1 * e.1;
+                let larger = v > best[l];
+                best[l] = if larger { v } else { best[l] };
+                piv[l] = if larger { r as f64 } else { piv[l] };
+            }
+        }
+        for l in 0..LANES {
+            singular[l] |= best[l] == 0.0;
+        }
+        for r in col + 1..4 {
+            let (top, rest) = m.split_at_mut(r);
+            let (pivot_row, row) = (&mut top[col], &mut rest[0]);
+            for c in col..4 {
+                for l in 0..LANES {
+                    let swap = piv[l] == r as f64;
+                    let (x, y) = (pivot_row[c].re[l], row[c].re[l]);
+                    pivot_row[c].re[l] = if swap { y } else { x };
+                    row[c].re[l] = if swap { x } else { y };
+                    let (x, y) = (pivot_row[c].im[l], row[c].im[l]);
+                    pivot_row[c].im[l] = if swap { y } else { x };
+                    row[c].im[l] = if swap { x } else { y };
+                }
+            }
+        }
+        let mut inv = LaneComplex::ZERO;
+        for l in 0..LANES {
+            let flip = piv[l] != col as f64;
+            det.re[l] = if flip { -det.re[l] } else { det.re[l] };
+            det.im[l] = if flip { -det.im[l] } else { det.im[l] };
+            let (dr, di) = (m[col][col].re[l], m[col][col].im[l]);
+            // det *= d, as `MulAssign` rounds it.
+            let a = det.re[l];
+            det.re[l] = det.re[l] * dr - det.im[l] * di;
+            det.im[l] = det.im[l] * dr + a * di;
+            // 1 / d, as `Div` rounds it.
+            let norm_sqr = dr * dr + di * di;
+            inv.re[l] = (1.0 * dr + 0.0 * di) / norm_sqr;
+            inv.im[l] = (0.0 * dr - 1.0 * di) / norm_sqr;
+        }
+        let (top, rest) = m.split_at_mut(col + 1);
+        let pivot_row = &top[col];
+        for row in rest.iter_mut() {
+            let mut factor = LaneComplex::ZERO;
+            for l in 0..LANES {
+                let (x, y) = (row[col].re[l], row[col].im[l]);
+                factor.re[l] = x * inv.re[l] - y * inv.im[l];
+                factor.im[l] = x * inv.im[l] + y * inv.re[l];
+            }
+            // Column `col` below the pivot is never read again; a zero
+            // factor leaves the row as it is.
+            for c in col + 1..4 {
+                for l in 0..LANES {
+                    let (fr, fi) = (factor.re[l], factor.im[l]);
+                    let skip = fr * fr + fi * fi == 0.0;
+                    let (vr, vi) = (pivot_row[c].re[l], pivot_row[c].im[l]);
+                    let pr = fr * vr - fi * vi;
+                    let pi = fr * vi + fi * vr;
+                    let (er, ei) = (row[c].re[l], row[c].im[l]);
+                    row[c].re[l] = if skip { er } else { er - pr };
+                    row[c].im[l] = if skip { ei } else { ei - pi };
+                }
+            }
+        }
+    }
+    for l in 0..LANES {
+        if singular[l] {
+            det.re[l] = 0.0;
+            det.im[l] = 0.0;
+        }
+    }
+    det
 }
 
 /// `cos(2 pi k / 32)` for k = 0..=8.
@@ -279,18 +406,44 @@ const COS_32: [f64; 9] = [
     0.0,
 ];
 
-/// `exp(2 pi i k / 32)` from the first-octant table by symmetry.
-fn unit_root(k: usize) -> C64 {
-    let cos = |k: usize| -> f64 {
-        let m = k % NODES;
-        match m {
-            0..=8 => COS_32[m],
-            9..=16 => -COS_32[16 - m],
-            17..=24 => -COS_32[m - 16],
-            _ => COS_32[32 - m],
+/// `cos(2 pi k / 32)` for k = 0..32, from [`COS_32`] by symmetry.
+const UNIT_ROOTS_COS: [f64; NODES] = {
+    let mut t = [0.0; NODES];
+    let mut k = 0;
+    while k < NODES {
+        t[k] = match k {
+            0..=8 => COS_32[k],
+            9..=16 => -COS_32[16 - k],
+            17..=24 => -COS_32[k - 16],
+            _ => COS_32[32 - k],
+        };
+        k += 1;
+    }
+    t
+};
+
+/// `omega^{jk}` for the node `k` (row) and the coefficient `j` (lane), with
+/// `omega = exp(2 pi i / 32)`: real parts here, imaginary parts in
+/// [`IDFT_SIN`]; lanes past the 17 coefficients are zero. Row 1 holds the
+/// nodes themselves.
+const IDFT_COS: [[f64; LANES]; NODES] = idft_table(0);
+/// Imaginary parts of the table of [`IDFT_COS`].
+const IDFT_SIN: [[f64; LANES]; NODES] = idft_table(NODES - 8);
+
+/// `cos(2 pi (jk + shift) / 32)` for node `k` and lane `j <= 16`
+/// (`sin(x) = cos(x - pi/2)`, a shift of 24 = -8 nodes).
+const fn idft_table(shift: usize) -> [[f64; LANES]; NODES] {
+    let mut t = [[0.0; LANES]; NODES];
+    let mut k = 0;
+    while k < NODES {
+        let mut j = 0;
+        while j <= RES_DEGREE {
+            t[k][j] = UNIT_ROOTS_COS[(j * k + shift) % NODES];
+            j += 1;
         }
-    };
-    C64::new(cos(k), cos(k + NODES - 8))
+        k += 1;
+    }
+    t
 }
 
 /// Maximum degree handled by [`aberth_roots`].
@@ -876,6 +1029,171 @@ mod tests {
         q1.mul(&q2)
     }
 
+    /// The one-node computation [`resultant_in_t2`] evaluates on all nodes
+    /// at once: the coefficients of `P(., z)` in t1 and the Bezout
+    /// determinant, with `Complex<f64>` arithmetic.
+    fn bezout_det_at(p: &Quartic2, q: &Quartic2, z: C64) -> C64 {
+        bezout_det(&coefs_in_t1_complex(p, z), &coefs_in_t1_complex(q, z))
+    }
+
+    fn coefs_in_t1_complex(p: &Quartic2, z: C64) -> [C64; 5] {
+        let mut out = [C64::new(0.0, 0.0); 5];
+        for (i, o) in out.iter_mut().enumerate() {
+            let mut acc = C64::new(0.0, 0.0);
+            for j in (0..5 - i).rev() {
+                acc = acc * z + p.0[i][j];
+            }
+            *o = acc;
+        }
+        out
+    }
+
+    /// Determinant of the 4x4 Bezout matrix of two univariate quartics (complex
+    /// coefficients, ascending powers): it equals, up to sign, their resultant.
+    ///
+    /// `(P(x)Q(y) - P(y)Q(x)) / (x - y) = sum_{i,j} B_ij x^i y^j` with
+    /// `B_ij = sum_{q = max(0, i+j+1-4)}^{min(i,j)} (a_{i+j+1-q} b_q - a_q b_{i+j+1-q})`.
+    fn bezout_det(a: &[C64; 5], b: &[C64; 5]) -> C64 {
+        let n: usize = 4;
+        // m_pq = a_p b_q - a_q b_p for p > q.
+        let mut mpq = [[C64::new(0.0, 0.0); 5]; 5];
+        for p in 1..5 {
+            for q in 0..p {
+                mpq[p][q] = a[p] * b[q] - a[q] * b[p];
+            }
+        }
+        let mut m = [[C64::new(0.0, 0.0); 4]; 4];
+        for i in 0..4usize {
+            for j in i..4usize {
+                let lo = (i + j + 1).saturating_sub(n);
+                let mut s = C64::new(0.0, 0.0);
+                for q in lo..=i {
+                    s += mpq[i + j + 1 - q][q];
+                }
+                // The Bezout matrix is symmetric.
+                m[i][j] = s;
+                m[j][i] = s;
+            }
+        }
+        det4_complex(m)
+    }
+
+    /// Determinant of a complex 4x4 matrix by Gaussian elimination with partial
+    /// pivoting.
+    fn det4_complex(mut m: [[C64; 4]; 4]) -> C64 {
+        let mut det = C64::new(1.0, 0.0);
+        for col in 0..4 {
+            let mut piv = col;
+            let mut best = m[col][col].norm_sqr();
+            for (r, row) in m.iter().enumerate().skip(col + 1) {
+                let v = row[col].norm_sqr();
+                if v > best {
+                    best = v;
+                    piv = r;
+                }
+            }
+            if best == 0.0 {
+                return C64::new(0.0, 0.0);
+            }
+            if piv != col {
+                m.swap(piv, col);
+                det = -det;
+            }
+            let d = m[col][col];
+            det *= d;
+            let inv = C64::new(1.0, 0.0) / d;
+            for r in col + 1..4 {
+                let factor = m[r][col] * inv;
+                if factor.norm_sqr() == 0.0 {
+                    continue;
+                }
+                let pivot_row = m[col];
+                for (entry, v) in m[r].iter_mut().zip(pivot_row.iter()).skip(col) {
+                    *entry -= factor * v;
+                }
+            }
+        }
+        det
+    }
+
+    /// `exp(2 pi i k / 32)` from the first-octant table by symmetry.
+    fn unit_root(k: usize) -> C64 {
+        let cos = |k: usize| -> f64 {
+            let m = k % NODES;
+            match m {
+                0..=8 => COS_32[m],
+                9..=16 => -COS_32[16 - m],
+                17..=24 => -COS_32[m - 16],
+                _ => COS_32[32 - m],
+            }
+        };
+        C64::new(cos(k), cos(k + NODES - 8))
+    }
+
+    /// The resultant with one node evaluated at a time.
+    fn resultant_in_t2_one_node_at_a_time(p: &Quartic2, q: &Quartic2) -> [f64; RES_DEGREE + 1] {
+        let mut omega = [C64::new(0.0, 0.0); NODES];
+        for (k, w) in omega.iter_mut().enumerate() {
+            *w = unit_root(k);
+        }
+        let mut values = [C64::new(0.0, 0.0); NODES];
+        for k in 0..=NODES / 2 {
+            let z = omega[k];
+            let v = bezout_det_at(p, q, z);
+            values[k] = v;
+            if k != 0 && k != NODES / 2 {
+                values[NODES - k] = v.conj();
+            }
+        }
+        let mut coefs = [0.0; RES_DEGREE + 1];
+        for (j, c) in coefs.iter_mut().enumerate() {
+            // Real part of (1/N) sum_k values[k] omega^{-jk}.
+            let mut acc = 0.0;
+            for (k, v) in values.iter().enumerate() {
+                let w = omega[(j * k) % NODES];
+                acc += v.re * w.re + v.im * w.im;
+            }
+            *c = acc / NODES as f64;
+        }
+        coefs
+    }
+
+    /// The node-parallel resultant gives the one-node-at-a-time values bit
+    /// for bit, on random quartics, on ones with zero coefficients and on a
+    /// pair whose Bezout matrix is singular at every node (P = Q).
+    #[test]
+    fn resultant_equals_the_one_node_at_a_time_computation_bit_for_bit() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(17);
+        let mut random_quartic = |zeros: f64| {
+            let mut c = [[0.0; 5]; 5];
+            for (i, row) in c.iter_mut().enumerate() {
+                for v in row.iter_mut().take(5 - i) {
+                    if !rng.gen_bool(zeros) {
+                        *v = rng.gen_range(-1.0..1.0) * 10f64.powi(rng.gen_range(-6..6));
+                    }
+                }
+            }
+            Quartic2(c)
+        };
+        let mut pairs = Vec::new();
+        for zeros in [0.0, 0.3, 0.7] {
+            for _ in 0..200 {
+                pairs.push((random_quartic(zeros), random_quartic(zeros)));
+            }
+        }
+        let p = product_of_lines(&LINES_P);
+        pairs.push((p, p));
+        pairs.push((p, product_of_lines(&LINES_Q)));
+        for (p, q) in &pairs {
+            let fast = resultant_in_t2(p, q);
+            let reference = resultant_in_t2_one_node_at_a_time(p, q);
+            for (a, b) in fast.iter().zip(&reference) {
+                assert_eq!(a.to_bits(), b.to_bits(), "{fast:?}\n{reference:?}");
+            }
+        }
+    }
+
     #[test]
     fn polynomial_products_match_pointwise_products() {
         let a = lin(0.3, -1.2, 0.7);
@@ -898,7 +1216,7 @@ mod tests {
     }
 
     #[test]
-    fn unit_roots_match_trigonometry() {
+    fn unit_roots_and_idft_tables_match_trigonometry() {
         for k in 0..NODES {
             let ang = std::f64::consts::TAU * k as f64 / NODES as f64;
             let z = unit_root(k);
@@ -906,6 +1224,18 @@ mod tests {
                 (z.re - ang.cos()).abs() < 1e-15 && (z.im - ang.sin()).abs() < 1e-15,
                 "k = {k}"
             );
+            for j in 0..LANES {
+                let (c, s) = if j <= RES_DEGREE {
+                    let ang = std::f64::consts::TAU * ((j * k) % NODES) as f64 / NODES as f64;
+                    (ang.cos(), ang.sin())
+                } else {
+                    (0.0, 0.0)
+                };
+                assert!(
+                    (IDFT_COS[k][j] - c).abs() < 1e-15 && (IDFT_SIN[k][j] - s).abs() < 1e-15,
+                    "k = {k}, j = {j}"
+                );
+            }
         }
     }
 
