@@ -231,11 +231,12 @@ fn resultant_in_t2_lanes(p: &Quartic2, q: &Quartic2) -> [f64; RES_DEGREE + 1] {
     }
     let a = coefs_in_t1_at_lanes(p, &z);
     let b = coefs_in_t1_at_lanes(q, &z);
-    // m_pq = a_p b_q - a_q b_p for p > q.
-    let mut mpq = [[LaneComplex::ZERO; 5]; 5];
+    // m_pq = a_p b_q - a_q b_p for p > q, at `pair(p, q)`.
+    let pair = |pp: usize, qq: usize| pp * (pp - 1) / 2 + qq;
+    let mut mpq = [LaneComplex::ZERO; 10];
     for pp in 1..5 {
         for qq in 0..pp {
-            mpq[pp][qq] = LaneComplex::mul_sub_mul(&a[pp], &b[qq], &a[qq], &b[pp]);
+            mpq[pair(pp, qq)] = LaneComplex::mul_sub_mul(&a[pp], &b[qq], &a[qq], &b[pp]);
         }
     }
     let mut m = [[LaneComplex::ZERO; 4]; 4];
@@ -244,7 +245,7 @@ fn resultant_in_t2_lanes(p: &Quartic2, q: &Quartic2) -> [f64; RES_DEGREE + 1] {
             let lo = (i + j + 1).saturating_sub(4);
             let mut s = LaneComplex::ZERO;
             for qq in lo..=i {
-                let t = &mpq[i + j + 1 - qq][qq];
+                let t = &mpq[pair(i + j + 1 - qq, qq)];
                 for l in 0..LANES {
                     s.re[l] += t.re[l];
                     s.im[l] += t.im[l];
@@ -694,36 +695,41 @@ impl AberthState {
                 si[a] -= ai * inv;
             }
         }
+        // The Aberth correction at every lane (lanes whose root passes the
+        // test compute one too; it is not used).
+        let mut passed = [false; L];
+        let mut next_re = [0.0; L];
+        let mut next_im = [0.0; L];
+        for a in 0..L {
+            let pv2 = pr[a] * pr[a] + pi[a] * pi[a];
+            let lim = tol * bound[a];
+            passed[a] = pv2 <= lim * lim;
+            let dp2 = dr[a] * dr[a] + di[a] * di[a];
+            // ratio = p / p'; at a stationary point of p, a nudge.
+            let nudge = 1e-8 * (1.0 + az[a]);
+            let regular = dp2 > 0.0;
+            let rr_q = (pr[a] * dr[a] + pi[a] * di[a]) / dp2;
+            let ri_q = (pi[a] * dr[a] - pr[a] * di[a]) / dp2;
+            let rr = if regular { rr_q } else { nudge };
+            let ri = if regular { ri_q } else { nudge };
+            // w = ratio / (1 - ratio * sum)
+            let (er, ei) = (1.0 - (rr * sr[a] - ri * si[a]), -(rr * si[a] + ri * sr[a]));
+            let e2 = er * er + ei * ei;
+            let wr_q = (rr * er + ri * ei) / e2;
+            let wi_q = (ri * er - rr * ei) / e2;
+            let (wr, wi) = if e2 > 0.0 { (wr_q, wi_q) } else { (rr, ri) };
+            next_re[a] = zr[a] - wr;
+            next_im[a] = zi[a] - wi;
+        }
         let mut moving = 0;
         for a in 0..n {
             let i = active[a];
-            let pv2 = pr[a] * pr[a] + pi[a] * pi[a];
-            let lim = tol * bound[a];
-            if pv2 <= lim * lim {
+            if passed[a] {
                 self.converged[i] = true;
                 continue;
             }
             moving += 1;
-            let dp2 = dr[a] * dr[a] + di[a] * di[a];
-            // ratio = p / p'
-            let (rr, ri) = if dp2 > 0.0 {
-                (
-                    (pr[a] * dr[a] + pi[a] * di[a]) / dp2,
-                    (pi[a] * dr[a] - pr[a] * di[a]) / dp2,
-                )
-            } else {
-                // Stationary point of p: nudge the approximation.
-                (1e-8 * (1.0 + az[a]), 1e-8 * (1.0 + az[a]))
-            };
-            // w = ratio / (1 - ratio * sum)
-            let (er, ei) = (1.0 - (rr * sr[a] - ri * si[a]), -(rr * si[a] + ri * sr[a]));
-            let e2 = er * er + ei * ei;
-            let (wr, wi) = if e2 > 0.0 {
-                ((rr * er + ri * ei) / e2, (ri * er - rr * ei) / e2)
-            } else {
-                (rr, ri)
-            };
-            let (nr, ni) = (zr[a] - wr, zi[a] - wi);
+            let (nr, ni) = (next_re[a], next_im[a]);
             if nr.is_finite() && ni.is_finite() {
                 self.re[i] = nr;
                 self.im[i] = ni;
