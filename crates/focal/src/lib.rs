@@ -11,8 +11,10 @@
 //!   orthonormal basis) the constraints are two bivariate quartics, whose
 //!   real solutions are all found by eliminating one variable (the Bezout
 //!   resultant, a degree-16 polynomial, interpolated at the 32nd roots of
-//!   unity), finding its roots by the Aberth–Ehrlich iteration and polishing
-//!   every candidate pair with Newton's method on the 2x2 system; the
+//!   unity), finding its roots by the Aberth–Ehrlich iteration, completing
+//!   each near-real root with the common root of the two quartics (the null
+//!   vector of their Bezout matrix) and polishing every candidate pair with
+//!   Newton's method on the 2x2 system; the
 //!   solution with the smallest `|l1| + |l2|` in the step multipliers is
 //!   taken.
 //!   [`robust_focals_multi_start`] is the reference's multi-start rule;

@@ -827,6 +827,11 @@ fn init_newton_polygon(c: &[f64], roots: &mut [C64]) {
     debug_assert_eq!(idx, deg);
 }
 
+/// Resultant roots closer than this (relative to `1 + |t2|`) count as a
+/// cluster, whose common roots t1 [`min_l1_real_solution`] finds from the
+/// real roots of the first quartic rather than from a null vector.
+const ISOLATION: f64 = 1e-1;
+
 /// The smallest diagonal cofactor, relative to the cube of the largest
 /// Bezout matrix entry, at which [`bezout_null_t1`] trusts the null vector.
 const NULL_VECTOR_TOLERANCE: f64 = 1e-6;
@@ -1000,16 +1005,23 @@ pub(crate) fn min_l1_real_solution(
     cache.len = nr;
 
     // Candidate t2 values: roots near the real axis, by increasing |t2|.
-    let mut cand = [0.0f64; MAX_DEGREE];
+    // Each with whether it is an isolated root: no other root within
+    // ISOLATION of it, so that one common root t1 belongs to it.
+    let mut cand = [(0.0f64, false); MAX_DEGREE];
     let mut nc = 0;
-    for z in roots.iter().take(nr) {
+    for (i, z) in roots.iter().enumerate().take(nr) {
         if z.im.abs() <= 1e-2 * (1.0 + z.re.abs()) {
-            cand[nc] = z.re;
+            let reach = ISOLATION * (1.0 + z.norm_sqr().sqrt());
+            let isolated = roots[..nr]
+                .iter()
+                .enumerate()
+                .all(|(j, w)| j == i || (z - w).norm_sqr() > reach * reach);
+            cand[nc] = (z.re, isolated);
             nc += 1;
         }
     }
     let cand = &mut cand[..nc];
-    cand.sort_by(|a, b| a.abs().total_cmp(&b.abs()));
+    cand.sort_by(|a, b| a.0.abs().total_cmp(&b.0.abs()));
 
     let sigma_min = smallest_singular_value(m);
     let objective = |s: &Solution| {
@@ -1017,15 +1029,20 @@ pub(crate) fn min_l1_real_solution(
     };
     let mut best: Option<(f64, Solution)> = None;
     let mut t1_roots = [C64::new(0.0, 0.0); MAX_DEGREE];
-    for &t2 in cand.iter() {
+    for &(t2, isolated) in cand.iter() {
         if let Some((b, _)) = best {
             if sigma_min * t2.abs() > 1.01 * b {
                 break;
             }
         }
-        // The common root from the Bezout matrix's null vector, when it
-        // polishes to a solution; else every real root of P(., t2).
-        if let Some(s) = bezout_null_t1(p, q, t2).and_then(|t1| polish(p, q, [t1, t2])) {
+        // At an isolated root, the common root from the Bezout matrix's null
+        // vector, when it polishes to a solution; else every real root of
+        // P(., t2).
+        if let Some(s) = isolated
+            .then(|| bezout_null_t1(p, q, t2))
+            .flatten()
+            .and_then(|t1| polish(p, q, [t1, t2]))
+        {
             let norm = objective(&s);
             if best.map_or(true, |(b, _)| norm < b) {
                 best = Some((norm, s));

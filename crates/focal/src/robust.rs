@@ -387,7 +387,7 @@ impl<'a> Solve<'a> {
     /// (period 2 in 80 % of them on AdelaideRMF), so this halves the solver's
     /// time there. The answer is the same as running every step except
     /// when the cycle is not exact and the iterates drift apart over the
-    /// remaining steps: 5 of 1600 noisy synthetic solves, all of them solves
+    /// remaining steps: 2 of 1600 noisy synthetic solves, all of them solves
     /// that ran out of steps either way (`robust_focals_skips_cycles_...`
     /// test).
     fn cycle_end(&self, step: usize) -> Option<[f64; 6]> {
