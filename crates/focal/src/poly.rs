@@ -542,14 +542,7 @@ impl AberthState {
     /// cost a fraction of the first ones.
     #[inline(always)]
     fn jacobi_sweep(&mut self) -> usize {
-        let mut active = [0usize; MAX_DEGREE];
-        let mut n = 0;
-        for i in 0..self.deg {
-            if !self.converged[i] {
-                active[n] = i;
-                n += 1;
-            }
-        }
+        let (active, n) = self.unconverged();
         match n {
             0 => 0,
             1..=4 => self.sweep_lanes::<4>(&active, n),
@@ -562,6 +555,17 @@ impl AberthState {
     /// lanes, however few they are (the reference for the packing).
     #[cfg(test)]
     fn jacobi_sweep_wide(&mut self) -> usize {
+        let (active, n) = self.unconverged();
+        if n == 0 {
+            return 0;
+        }
+        self.sweep_lanes::<MAX_DEGREE>(&active, n)
+    }
+
+    /// The indices of the roots that have not converged, in increasing
+    /// order (the first `n` entries), and `n`.
+    #[inline(always)]
+    fn unconverged(&self) -> ([usize; MAX_DEGREE], usize) {
         let mut active = [0usize; MAX_DEGREE];
         let mut n = 0;
         for i in 0..self.deg {
@@ -570,10 +574,7 @@ impl AberthState {
                 n += 1;
             }
         }
-        if n == 0 {
-            return 0;
-        }
-        self.sweep_lanes::<MAX_DEGREE>(&active, n)
+        (active, n)
     }
 
     /// [`AberthState::jacobi_sweep`] on the `n` roots `active[..n]`, held
@@ -885,22 +886,17 @@ fn bezout_null_t1(p: &Quartic2, q: &Quartic2, t2: f64) -> Option<f64> {
             -det
         }
     };
+    let diagonal = [0, 1, 2, 3].map(|x| cofactor(x, x).abs());
     let k = (0..4)
-        .max_by(|&x, &y| cofactor(x, x).abs().total_cmp(&cofactor(y, y).abs()))
+        .max_by(|&x, &y| diagonal[x].total_cmp(&diagonal[y]))
         .unwrap_or(0);
     // A rank-deficient adjugate (two common roots, or a near-double root
     // of the resultant) does not determine t1.
     let size = m.iter().flatten().fold(0.0_f64, |acc, v| acc.max(v.abs()));
-    let diagonal = cofactor(k, k).abs();
-    if diagonal.is_nan() || diagonal <= NULL_VECTOR_TOLERANCE * size * size * size {
+    if diagonal[k].is_nan() || diagonal[k] <= NULL_VECTOR_TOLERANCE * size * size * size {
         return None;
     }
-    let v = [
-        cofactor(0, k),
-        cofactor(1, k),
-        cofactor(2, k),
-        cofactor(3, k),
-    ];
+    let v = [0, 1, 2, 3].map(|i| cofactor(i, k));
     let t1 = if v[0].abs() >= v[3].abs() {
         v[1] / v[0]
     } else {
@@ -1043,10 +1039,7 @@ pub(crate) fn min_l1_real_solution(
             .flatten()
             .and_then(|t1| polish(p, q, [t1, t2]))
         {
-            let norm = objective(&s);
-            if best.map_or(true, |(b, _)| norm < b) {
-                best = Some((norm, s));
-            }
+            keep_better(&mut best, objective(&s), s);
             continue;
         }
         // The t1 candidates: real roots of P(., t2), or of Q(., t2) when P
@@ -1077,18 +1070,19 @@ pub(crate) fn min_l1_real_solution(
                 continue;
             }
             if let Some(s) = polish(p, q, [t1, t2]) {
-                let norm = objective(&s);
-                let better = match best {
-                    Some((b, _)) => norm < b,
-                    None => true,
-                };
-                if better {
-                    best = Some((norm, s));
-                }
+                keep_better(&mut best, objective(&s), s);
             }
         }
     }
     best.map(|(_, s)| s)
+}
+
+/// Replaces `best` by `(norm, s)` when there is none yet or `norm` is
+/// strictly smaller (so the first of equal candidates stays).
+fn keep_better(best: &mut Option<(f64, Solution)>, norm: f64, s: Solution) {
+    if best.map_or(true, |(b, _)| norm < b) {
+        *best = Some((norm, s));
+    }
 }
 
 /// The smallest singular value of a 2x2 matrix.
@@ -1122,9 +1116,10 @@ mod tests {
         q1.mul(&q2)
     }
 
-    /// The one-node computation [`resultant_in_t2`] evaluates on all nodes
-    /// at once: the coefficients of `P(., z)` in t1 and the Bezout
-    /// determinant, with `Complex<f64>` arithmetic.
+    /// The resultant's value at one node `z` computed independently of
+    /// [`resultant_in_t2`]: the coefficients of `P(., z)` in t1 and the
+    /// Bezout determinant by Gaussian elimination with partial pivoting,
+    /// with `Complex<f64>` arithmetic.
     fn bezout_det_at(p: &Quartic2, q: &Quartic2, z: C64) -> C64 {
         bezout_det(&coefs_in_t1_complex(p, z), &coefs_in_t1_complex(q, z))
     }
@@ -1209,18 +1204,12 @@ mod tests {
         det
     }
 
-    /// `exp(2 pi i k / 32)` from the first-octant table by symmetry.
+    /// `exp(2 pi i k / 32)` from [`UNIT_ROOTS_COS`] (`sin(x) = cos(x - pi/2)`).
     fn unit_root(k: usize) -> C64 {
-        let cos = |k: usize| -> f64 {
-            let m = k % NODES;
-            match m {
-                0..=8 => COS_32[m],
-                9..=16 => -COS_32[16 - m],
-                17..=24 => -COS_32[m - 16],
-                _ => COS_32[32 - m],
-            }
-        };
-        C64::new(cos(k), cos(k + NODES - 8))
+        C64::new(
+            UNIT_ROOTS_COS[k % NODES],
+            UNIT_ROOTS_COS[(k + NODES - 8) % NODES],
+        )
     }
 
     /// The resultant with one node evaluated at a time.
