@@ -150,22 +150,25 @@ impl Quartic2 {
 const NODES: usize = 32;
 /// Degree bound of the resultant of two bivariate quartics (Bezout: 4 * 4).
 const RES_DEGREE: usize = 16;
-/// Lanes of the node-parallel evaluation in [`resultant_in_t2`]: the 17
-/// nodes `omega^0 … omega^16` padded to a multiple of four (the padding
-/// lanes repeat node 0 and are ignored).
+/// Lanes of the inverse DFT in [`resultant_in_t2`]: the 17 coefficients
+/// padded to a multiple of four (the padding lanes are ignored).
 const LANES: usize = 20;
+
+/// Nodes evaluated side by side in [`node_values`]: few enough that one
+/// chunk's intermediate values stay in registers and the first-level cache.
+const CHUNK: usize = 4;
 
 /// One complex number per lane, in structure-of-arrays form.
 #[derive(Clone, Copy)]
-struct LaneComplex {
-    re: [f64; LANES],
-    im: [f64; LANES],
+struct LaneComplex<const L: usize> {
+    re: [f64; L],
+    im: [f64; L],
 }
 
-impl LaneComplex {
+impl<const L: usize> LaneComplex<L> {
     const ZERO: Self = Self {
-        re: [0.0; LANES],
-        im: [0.0; LANES],
+        re: [0.0; L],
+        im: [0.0; L],
     };
 
     /// `a * b - c * d` lane by lane, each product and the difference rounded
@@ -173,13 +176,24 @@ impl LaneComplex {
     #[inline(always)]
     fn mul_sub_mul(a: &Self, b: &Self, c: &Self, d: &Self) -> Self {
         let mut out = Self::ZERO;
-        for l in 0..LANES {
+        for l in 0..L {
             let xr = a.re[l] * b.re[l] - a.im[l] * b.im[l];
             let xi = a.re[l] * b.im[l] + a.im[l] * b.re[l];
             let yr = c.re[l] * d.re[l] - c.im[l] * d.im[l];
             let yi = c.re[l] * d.im[l] + c.im[l] * d.re[l];
             out.re[l] = xr - yr;
             out.im[l] = xi - yi;
+        }
+        out
+    }
+
+    /// `a + b` lane by lane.
+    #[inline(always)]
+    fn add(a: &Self, b: &Self) -> Self {
+        let mut out = *a;
+        for l in 0..L {
+            out.re[l] += b.re[l];
+            out.im[l] += b.im[l];
         }
         out
     }
@@ -198,19 +212,37 @@ impl LaneComplex {
 /// `B_ij = sum_{q = max(0, i+j+1-4)}^{min(i,j)} (a_{i+j+1-q} b_q - a_q b_{i+j+1-q})`,
 /// has their resultant as determinant (up to sign), computed by Laplace
 /// expansion in 2x2 minors ([`det4_at_lanes`]: no pivoting and no division,
-/// so the 17 nodes are evaluated side by side, one per lane, AVX2 when
-/// present).
+/// so [`CHUNK`] nodes are evaluated side by side, one per lane, with the
+/// widest vector instructions present: [`Simd`]).
 fn resultant_in_t2(p: &Quartic2, q: &Quartic2) -> [f64; RES_DEGREE + 1] {
-    #[cfg(target_arch = "x86_64")]
-    if avx2_available() {
-        // SAFETY: the CPU supports AVX2.
-        return unsafe { resultant_in_t2_avx2(p, q) };
+    resultant_in_t2_with(Simd::detect(), p, q)
+}
+
+/// [`resultant_in_t2`] with the kernel compiled for `simd`, which the CPU
+/// must support (as [`Simd::detect`] and [`Simd::supported`] ensure).
+fn resultant_in_t2_with(simd: Simd, p: &Quartic2, q: &Quartic2) -> [f64; RES_DEGREE + 1] {
+    match simd {
+        // SAFETY: `simd` is a level the CPU supports.
+        #[cfg(target_arch = "x86_64")]
+        Simd::Avx512 => unsafe { resultant_in_t2_avx512(p, q) },
+        // SAFETY: as above.
+        #[cfg(target_arch = "x86_64")]
+        Simd::Avx2 => unsafe { resultant_in_t2_avx2(p, q) },
+        _ => resultant_in_t2_lanes(p, q),
     }
+}
+
+/// [`resultant_in_t2_lanes`] compiled for AVX-512 (see [`Simd`]).
+///
+/// # Safety
+/// The CPU must support [`Simd::Avx512`].
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f,avx512dq,avx512vl")]
+unsafe fn resultant_in_t2_avx512(p: &Quartic2, q: &Quartic2) -> [f64; RES_DEGREE + 1] {
     resultant_in_t2_lanes(p, q)
 }
 
-/// [`resultant_in_t2_lanes`] compiled for AVX2: the same operations in the
-/// same order (no fused multiply-add), so the same results.
+/// [`resultant_in_t2_lanes`] compiled for AVX2 (see [`Simd`]).
 ///
 /// # Safety
 /// The CPU must support AVX2.
@@ -222,46 +254,15 @@ unsafe fn resultant_in_t2_avx2(p: &Quartic2, q: &Quartic2) -> [f64; RES_DEGREE +
 
 #[inline(always)]
 fn resultant_in_t2_lanes(p: &Quartic2, q: &Quartic2) -> [f64; RES_DEGREE + 1] {
-    let mut z = LaneComplex::ZERO;
-    for l in 0..LANES {
-        let k = if l <= NODES / 2 { l } else { 0 };
-        z.re[l] = IDFT_COS[1][k];
-        z.im[l] = IDFT_SIN[1][k];
-    }
-    let a = coefs_in_t1_at_lanes(p, &z);
-    let b = coefs_in_t1_at_lanes(q, &z);
-    // m_pq = a_p b_q - a_q b_p for p > q, at `pair(p, q)`.
-    let pair = |pp: usize, qq: usize| pp * (pp - 1) / 2 + qq;
-    let mut mpq = [LaneComplex::ZERO; 10];
-    for pp in 1..5 {
-        for qq in 0..pp {
-            mpq[pair(pp, qq)] = LaneComplex::mul_sub_mul(&a[pp], &b[qq], &a[qq], &b[pp]);
-        }
-    }
-    let mut m = [[LaneComplex::ZERO; 4]; 4];
-    for i in 0..4usize {
-        for j in i..4usize {
-            let lo = (i + j + 1).saturating_sub(4);
-            let mut s = LaneComplex::ZERO;
-            for qq in lo..=i {
-                let t = &mpq[pair(i + j + 1 - qq, qq)];
-                for l in 0..LANES {
-                    s.re[l] += t.re[l];
-                    s.im[l] += t.im[l];
-                }
-            }
-            // The Bezout matrix is symmetric.
-            m[i][j] = s;
-            m[j][i] = s;
-        }
-    }
-    let det = det4_at_lanes(&m);
     let mut values = [C64::new(0.0, 0.0); NODES];
-    for k in 0..=NODES / 2 {
-        let v = C64::new(det.re[k], det.im[k]);
-        values[k] = v;
-        if k != 0 && k != NODES / 2 {
-            values[NODES - k] = v.conj();
+    for first in (0..=NODES / 2).step_by(CHUNK) {
+        let det = node_values::<CHUNK>(p, q, first);
+        for (l, k) in (first..=NODES / 2).take(CHUNK).enumerate() {
+            let v = C64::new(det.re[l], det.im[l]);
+            values[k] = v;
+            if k != 0 && k != NODES / 2 {
+                values[NODES - k] = v.conj();
+            }
         }
     }
     let mut acc = [0.0; LANES];
@@ -279,15 +280,57 @@ fn resultant_in_t2_lanes(p: &Quartic2, q: &Quartic2) -> [f64; RES_DEGREE + 1] {
     coefs
 }
 
+/// The Bezout determinant of P and Q at the nodes `omega^first …
+/// omega^(first + L - 1)` (lanes past node 16 hold node 0 and are ignored).
+#[inline(always)]
+fn node_values<const L: usize>(p: &Quartic2, q: &Quartic2, first: usize) -> LaneComplex<L> {
+    let mut z = LaneComplex::<L>::ZERO;
+    for l in 0..L {
+        let k = if first + l <= NODES / 2 { first + l } else { 0 };
+        z.re[l] = IDFT_COS[1][k];
+        z.im[l] = IDFT_SIN[1][k];
+    }
+    let a = coefs_in_t1_at_lanes(p, &z);
+    let b = coefs_in_t1_at_lanes(q, &z);
+    // m_pq = a_p b_q - a_q b_p for p > q.
+    let m = |pp: usize, qq: usize| LaneComplex::mul_sub_mul(&a[pp], &b[qq], &a[qq], &b[pp]);
+    let (m10, m20, m30, m40) = (m(1, 0), m(2, 0), m(3, 0), m(4, 0));
+    let (m21, m31, m41, m32, m42, m43) = (m(2, 1), m(3, 1), m(4, 1), m(3, 2), m(4, 2), m(4, 3));
+    // B_ij = sum_q m_{i+j+1-q, q}, q from max(0, i+j+1-4) to i, summed from
+    // zero in increasing q; the matrix is symmetric.
+    let sum = |terms: &[&LaneComplex<L>]| {
+        terms
+            .iter()
+            .fold(LaneComplex::ZERO, |s, t| LaneComplex::add(&s, t))
+    };
+    let b00 = sum(&[&m10]);
+    let b01 = sum(&[&m20]);
+    let b02 = sum(&[&m30]);
+    let b03 = sum(&[&m40]);
+    let b11 = sum(&[&m30, &m21]);
+    let b12 = sum(&[&m40, &m31]);
+    let b13 = sum(&[&m41]);
+    let b22 = sum(&[&m41, &m32]);
+    let b23 = sum(&[&m42]);
+    let b33 = sum(&[&m43]);
+    let bezout = [
+        [b00, b01, b02, b03],
+        [b01, b11, b12, b13],
+        [b02, b12, b22, b23],
+        [b03, b13, b23, b33],
+    ];
+    det4_at_lanes(&bezout)
+}
+
 /// The coefficients (ascending powers of t1) of `P(., z)` at every lane's
 /// `z`, by Horner in t2 over the coefficients of each power of t1.
 #[inline(always)]
-fn coefs_in_t1_at_lanes(p: &Quartic2, z: &LaneComplex) -> [LaneComplex; 5] {
+fn coefs_in_t1_at_lanes<const L: usize>(p: &Quartic2, z: &LaneComplex<L>) -> [LaneComplex<L>; 5] {
     let mut out = [LaneComplex::ZERO; 5];
     for (i, o) in out.iter_mut().enumerate() {
         for j in (0..5 - i).rev() {
             let c = p.0[i][j];
-            for l in 0..LANES {
+            for l in 0..L {
                 let (ar, ai) = (o.re[l], o.im[l]);
                 o.re[l] = (ar * z.re[l] - ai * z.im[l]) + c;
                 o.im[l] = ar * z.im[l] + ai * z.re[l];
@@ -304,7 +347,7 @@ fn coefs_in_t1_at_lanes(p: &Quartic2, z: &LaneComplex) -> [LaneComplex; 5] {
 // operations side by side.
 #[allow(clippy::needless_range_loop)]
 #[inline(always)]
-fn det4_at_lanes(m: &[[LaneComplex; 4]; 4]) -> LaneComplex {
+fn det4_at_lanes<const L: usize>(m: &[[LaneComplex<L>; 4]; 4]) -> LaneComplex<L> {
     // The six column pairs, their complements and signs.
     const PAIRS: [(usize, usize, usize, usize, f64); 6] = [
         (0, 1, 2, 3, 1.0),
@@ -318,7 +361,7 @@ fn det4_at_lanes(m: &[[LaneComplex; 4]; 4]) -> LaneComplex {
     for (a, b, c, d, sign) in PAIRS {
         let top = LaneComplex::mul_sub_mul(&m[0][a], &m[1][b], &m[0][b], &m[1][a]);
         let bottom = LaneComplex::mul_sub_mul(&m[2][c], &m[3][d], &m[2][d], &m[3][c]);
-        for l in 0..LANES {
+        for l in 0..L {
             let re = top.re[l] * bottom.re[l] - top.im[l] * bottom.im[l];
             let im = top.re[l] * bottom.im[l] + top.im[l] * bottom.re[l];
             det.re[l] += sign * re;
@@ -479,7 +522,7 @@ struct AberthState {
     re: [f64; MAX_DEGREE],
     im: [f64; MAX_DEGREE],
     converged: [bool; MAX_DEGREE],
-    avx2: bool,
+    simd: Simd,
 }
 
 impl AberthState {
@@ -492,7 +535,7 @@ impl AberthState {
             re: [0.0; MAX_DEGREE],
             im: [0.0; MAX_DEGREE],
             converged: [false; MAX_DEGREE],
-            avx2: avx2_available(),
+            simd: Simd::detect(),
         };
         for (k, &v) in c.iter().enumerate() {
             state.c[k] = v;
@@ -511,17 +554,30 @@ impl AberthState {
         }
     }
 
+    /// [`AberthState::jacobi_sweep`] compiled for `self.simd`.
     fn jacobi_sweep_dispatch(&mut self) -> usize {
-        #[cfg(target_arch = "x86_64")]
-        if self.avx2 {
-            // SAFETY: `avx2` is set only when the CPU supports AVX2.
-            return unsafe { self.jacobi_sweep_avx2() };
+        match self.simd {
+            // SAFETY: `simd` is a level the CPU supports.
+            #[cfg(target_arch = "x86_64")]
+            Simd::Avx512 => unsafe { self.jacobi_sweep_avx512() },
+            // SAFETY: as above.
+            #[cfg(target_arch = "x86_64")]
+            Simd::Avx2 => unsafe { self.jacobi_sweep_avx2() },
+            _ => self.jacobi_sweep(),
         }
+    }
+
+    /// [`AberthState::jacobi_sweep`] compiled for AVX-512 (see [`Simd`]).
+    ///
+    /// # Safety
+    /// The CPU must support [`Simd::Avx512`].
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx512f,avx512dq,avx512vl")]
+    unsafe fn jacobi_sweep_avx512(&mut self) -> usize {
         self.jacobi_sweep()
     }
 
-    /// [`AberthState::jacobi_sweep`] compiled for AVX2: the same operations
-    /// in the same order (no fused multiply-add), so the same results.
+    /// [`AberthState::jacobi_sweep`] compiled for AVX2 (see [`Simd`]).
     ///
     /// # Safety
     /// The CPU must support AVX2.
@@ -676,15 +732,46 @@ impl AberthState {
     }
 }
 
-/// Whether the AVX2 version of the Aberth sweep can run.
-fn avx2_available() -> bool {
-    #[cfg(target_arch = "x86_64")]
-    {
-        std::arch::is_x86_feature_detected!("avx2")
+/// The instruction sets the lane-parallel kernels ([`resultant_in_t2`] and
+/// the Aberth sweeps) are compiled for, widest first. Each build performs
+/// the same IEEE operations in the same order (the compiler fuses no
+/// multiply-add and reorders no sum), so every level gives the same bits;
+/// the wider ones only hold more lanes per instruction and, with AVX-512,
+/// keep the 16 lanes' sums in 32 registers instead of spilling them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Simd {
+    /// AVX-512 F, DQ and VL.
+    Avx512,
+    /// AVX2.
+    Avx2,
+    /// Whatever the target's baseline is (SSE2 on x86-64).
+    Portable,
+}
+
+impl Simd {
+    /// The widest level this CPU supports.
+    fn detect() -> Self {
+        Self::supported()[0]
     }
-    #[cfg(not(target_arch = "x86_64"))]
-    {
-        false
+
+    /// The levels this CPU supports, widest first (`Portable` always).
+    fn supported() -> [Self; 3] {
+        let mut levels = [Self::Portable; 3];
+        let mut n = 0;
+        #[cfg(target_arch = "x86_64")]
+        {
+            use std::arch::is_x86_feature_detected as has;
+            if has!("avx512f") && has!("avx512dq") && has!("avx512vl") {
+                levels[n] = Self::Avx512;
+                n += 1;
+            }
+            if has!("avx2") {
+                levels[n] = Self::Avx2;
+                n += 1;
+            }
+        }
+        levels[n] = Self::Portable;
+        levels
     }
 }
 
@@ -1456,30 +1543,48 @@ mod tests {
         check(&warm);
     }
 
-    /// The AVX2 build of the whole-set sweep computes exactly what the
-    /// portable one does.
+    /// Every build of the sweeps and of the resultant that this CPU can run
+    /// computes exactly what the portable one does.
     #[test]
-    fn aberth_sweep_is_the_same_with_and_without_avx2() {
-        if !avx2_available() {
-            return;
-        }
+    fn simd_builds_compute_the_same_bits() {
         let poly = poly_from_roots(
             &[-2.0, -0.5, 0.1, 0.8, 1.7, 3.0],
             &[(0.4, 0.9), (-1.2, 0.3)],
         );
         let mut start = [C64::new(0.0, 0.0); MAX_DEGREE];
         init_newton_polygon(&poly, &mut start[..10]);
-        let mut portable = AberthState::new(&poly, &start[..10]);
-        portable.avx2 = false;
-        let mut vector = AberthState::new(&poly, &start[..10]);
-        assert!(vector.avx2);
-        for _ in 0..6 {
-            let a = portable.jacobi_sweep_dispatch();
-            let b = vector.jacobi_sweep_dispatch();
-            assert_eq!(a, b);
-            for i in 0..10 {
-                assert_eq!(portable.re[i].to_bits(), vector.re[i].to_bits());
-                assert_eq!(portable.im[i].to_bits(), vector.im[i].to_bits());
+        let p = product_of_lines(&[
+            [1.0, 2.0, -3.0],
+            [0.5, -1.0, 4.0],
+            [-2.0, 0.3, 1.0],
+            [1.5, 1.5, -0.7],
+        ]);
+        let q = product_of_lines(&[
+            [0.2, 1.0, 2.0],
+            [1.0, -0.4, -1.0],
+            [3.0, 0.1, 0.5],
+            [-1.0, 2.0, 0.25],
+        ]);
+        let res_portable = resultant_in_t2_with(Simd::Portable, &p, &q);
+        for simd in Simd::supported() {
+            let res = resultant_in_t2_with(simd, &p, &q);
+            assert_eq!(
+                res.map(f64::to_bits),
+                res_portable.map(f64::to_bits),
+                "{simd:?}"
+            );
+            let mut portable = AberthState::new(&poly, &start[..10]);
+            portable.simd = Simd::Portable;
+            let mut vector = AberthState::new(&poly, &start[..10]);
+            vector.simd = simd;
+            for _ in 0..6 {
+                let a = portable.jacobi_sweep_dispatch();
+                let b = vector.jacobi_sweep_dispatch();
+                assert_eq!(a, b);
+                for i in 0..10 {
+                    assert_eq!(portable.re[i].to_bits(), vector.re[i].to_bits(), "{simd:?}");
+                    assert_eq!(portable.im[i].to_bits(), vector.im[i].to_bits(), "{simd:?}");
+                }
             }
         }
     }
