@@ -20,8 +20,9 @@ use crate::kruppa::sorted_svd;
 ///
 /// The formula is invariant to the scale and sign of F and of the epipoles.
 /// Fails with [`FocalFailure::NoRealFocal`] when `f^2 <= 0`,
-/// [`FocalFailure::Singular`] when a denominator is below `1e-15 |p|^2`
-/// (F scaled to unit Frobenius norm) or the result is not finite, and
+/// [`FocalFailure::Singular`] when a denominator `a . b` is below
+/// `1e-12 |a| |b|` (twelve digits of cancellation) or the result is not
+/// finite, and
 /// [`FocalFailure::InvalidMatrix`] / [`FocalFailure::InvalidParameter`] on
 /// non-finite input. The first failing image decides the error; use
 /// [`bougnoux_per_image`] to get each image's answer separately.
@@ -100,6 +101,13 @@ fn prepare(f: &Matrix3<f64>, pp1: [f64; 2], pp2: [f64; 2]) -> Result<Prepared, F
     Ok((fnorm, e1, e2, p1, p2))
 }
 
+/// The denominator of [`focal_from`] counts as zero when it is below this
+/// fraction of the product of its two factors' norms (its Cauchy–Schwarz
+/// bound): beyond about twelve digits of cancellation it is rounding noise.
+/// Relative, so that the test does not depend on the focal length or the
+/// principal point, which set the denominator's magnitude.
+const SINGULAR_CANCELLATION: f64 = 1e-12;
+
 /// `f^2 = - (q^T [e]x I~ F p)(q^T F p) / (q^T [e]x I~ F I~ F^T q)`, the
 /// focal of the image whose principal point is `p` (F maps its points to
 /// lines in the other image, whose epipole is `e` and principal point `q`).
@@ -111,9 +119,10 @@ fn focal_from(
 ) -> Result<f64, FocalFailure> {
     let itilde = Matrix3::from_diagonal(&Vector3::new(1.0, 1.0, 0.0));
     let row = q.transpose() * e.cross_matrix() * itilde * f; // q^T [e]x I~ F
+    let col = itilde * f.transpose() * q; // I~ F^T q
     let num = -(row * p)[0] * (q.transpose() * f * p)[0];
-    let den = (row * itilde * f.transpose() * q)[0];
-    if den.is_nan() || den.abs() <= 1e-15 * q.norm_squared() {
+    let den = (row * col)[0];
+    if den.is_nan() || den.abs() <= SINGULAR_CANCELLATION * row.norm() * col.norm() {
         return Err(FocalFailure::Singular);
     }
     let f_sq = num / den;
