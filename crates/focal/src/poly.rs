@@ -438,6 +438,7 @@ pub(crate) const MAX_DEGREE: usize = RES_DEGREE;
 /// not converge is retried from the Newton polygon. Roots that miss the
 /// backward-error test after the iteration budget are still returned (as
 /// approximations); callers polish and verify them.
+#[inline(always)]
 pub(crate) fn aberth_roots(
     coefs: &[f64],
     out: &mut [C64; MAX_DEGREE],
@@ -489,6 +490,7 @@ pub(crate) fn aberth_roots(
 /// (Gauss–Seidel) sweeps of [`aberth_gauss_seidel`] for the last few.
 /// Returns true when every approximation met the backward-error test
 /// `|p(z)| <= 4 eps sum |c_k| |z|^k`.
+#[inline(always)]
 fn aberth_iterate(c: &[f64], roots: &mut [C64], max_iter: usize) -> bool {
     let deg = c.len() - 1;
     if deg <= JACOBI_MIN_MOVING + 1 {
@@ -737,9 +739,12 @@ impl AberthState {
 /// the same IEEE operations in the same order (the compiler fuses no
 /// multiply-add and reorders no sum), so every level gives the same bits;
 /// the wider ones only hold more lanes per instruction and, with AVX-512,
-/// keep the 16 lanes' sums in 32 registers instead of spilling them.
+/// keep the 16 lanes' sums in 32 registers instead of spilling them. With
+/// AVX-512 the whole robust solve is compiled for it (`robust::solve_avx512`);
+/// the step's functions here are `#[inline(always)]` so that they are
+/// compiled into that build rather than called in their baseline one.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Simd {
+pub(crate) enum Simd {
     /// AVX-512 F, DQ and VL.
     Avx512,
     /// AVX2.
@@ -750,7 +755,7 @@ enum Simd {
 
 impl Simd {
     /// The widest level this CPU supports.
-    fn detect() -> Self {
+    pub(crate) fn detect() -> Self {
         Self::supported()[0]
     }
 
@@ -779,6 +784,7 @@ impl Simd {
 /// polynomial with ascending coefficients `c` (nonzero ends); returns true
 /// when every approximation met the backward-error test
 /// `|p(z)| <= 4 eps sum |c_k| |z|^k`.
+#[inline(always)]
 fn aberth_gauss_seidel(c: &[f64], roots: &mut [C64], max_iter: usize) -> bool {
     let deg = c.len() - 1;
     let mut abs_c = [0.0; MAX_DEGREE + 1];
@@ -863,6 +869,7 @@ fn aberth_gauss_seidel(c: &[f64], roots: &mut [C64], max_iter: usize) -> bool {
 /// Bini's initial approximations: for each edge of the upper convex hull of
 /// the points (k, log|c_k|), place as many points as the edge is long on the
 /// circle of the radius the edge's slope gives, with rotated angles.
+#[inline(always)]
 fn init_newton_polygon(c: &[f64], roots: &mut [C64]) {
     let deg = c.len() - 1;
     let mut hull = [0usize; MAX_DEGREE + 1];
@@ -932,6 +939,7 @@ const NULL_VECTOR_TOLERANCE: f64 = 1e-6;
 /// not finite.
 // The symmetric matrix is filled by index pairs (i, j), j >= i.
 #[allow(clippy::needless_range_loop)]
+#[inline(always)]
 fn bezout_null_t1(p: &Quartic2, q: &Quartic2, t2: f64) -> Option<f64> {
     let a = p.coefs_in_t1(t2);
     let b = q.coefs_in_t1(t2);
@@ -998,6 +1006,7 @@ pub(crate) type Solution = [f64; 2];
 /// Newton's method on the 2x2 system `P = Q = 0` from `t`. Returns the
 /// polished point when it converged to a real solution: both residuals below
 /// `1e-10` times their magnitude bound `sum |c_ij| |t1|^i |t2|^j`.
+#[inline(always)]
 pub(crate) fn polish(p: &Quartic2, q: &Quartic2, mut t: [f64; 2]) -> Option<Solution> {
     for _ in 0..12 {
         let (pv, p1, p2, pm) = p.eval_with_grad(t[0], t[1]);
@@ -1064,6 +1073,7 @@ impl Default for RootCache {
 /// visited in increasing `|t2|`; since `|Mt|_1 >= sigma_min(M) |t|_2 >=
 /// sigma_min(M) |t2|`, the search stops once no remaining candidate can
 /// improve on the best.
+#[inline(always)]
 pub(crate) fn min_l1_real_solution(
     p: &Quartic2,
     q: &Quartic2,
