@@ -1563,18 +1563,8 @@ mod tests {
         );
         let mut start = [C64::new(0.0, 0.0); MAX_DEGREE];
         init_newton_polygon(&poly, &mut start[..10]);
-        let p = product_of_lines(&[
-            [1.0, 2.0, -3.0],
-            [0.5, -1.0, 4.0],
-            [-2.0, 0.3, 1.0],
-            [1.5, 1.5, -0.7],
-        ]);
-        let q = product_of_lines(&[
-            [0.2, 1.0, 2.0],
-            [1.0, -0.4, -1.0],
-            [3.0, 0.1, 0.5],
-            [-1.0, 2.0, 0.25],
-        ]);
+        let p = product_of_lines(&LINES_P);
+        let q = product_of_lines(&LINES_Q);
         let res_portable = resultant_in_t2_with(Simd::Portable, &p, &q);
         for simd in Simd::supported() {
             let res = resultant_in_t2_with(simd, &p, &q);

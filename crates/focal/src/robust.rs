@@ -283,11 +283,11 @@ pub fn robust_focals(
         // SAFETY: `detect` returns only levels the CPU supports.
         #[cfg(target_arch = "x86_64")]
         Simd::Avx512 => unsafe { solve_avx512(f, params) },
-        _ => solve(f, params),
+        _ => solve_to_end(f, params),
     }
 }
 
-/// [`solve`] compiled for AVX-512 as a whole, so that the scalar parts of a
+/// [`solve_to_end`] compiled for AVX-512 as a whole, so that the scalar parts of a
 /// step (the plane, the Kruppa quartics, the candidates' polish) also get its
 /// 32 registers; the same operations in the same order, so the same bits.
 ///
@@ -299,12 +299,15 @@ unsafe fn solve_avx512(
     f: &Matrix3<f64>,
     params: &RobustFocalParams,
 ) -> Result<FocalEstimate, FocalFailure> {
-    solve(f, params)
+    solve_to_end(f, params)
 }
 
 /// [`robust_focals`]: the steps from the prior to the end.
 #[inline(always)]
-fn solve(f: &Matrix3<f64>, params: &RobustFocalParams) -> Result<FocalEstimate, FocalFailure> {
+fn solve_to_end(
+    f: &Matrix3<f64>,
+    params: &RobustFocalParams,
+) -> Result<FocalEstimate, FocalFailure> {
     let k = KruppaSvd::new(f);
     let mut solve = Solve::start(k.as_ref(), params)?;
     loop {
@@ -689,7 +692,7 @@ mod tests {
                     max_iters: ADELAIDE_MAX_ITERS,
                 };
                 let dispatched = robust_focals(&f, &params);
-                let baseline = solve(&f, &params);
+                let baseline = solve_to_end(&f, &params);
                 match (dispatched, baseline) {
                     (Ok(a), Ok(b)) => {
                         assert_eq!(
