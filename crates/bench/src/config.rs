@@ -6,141 +6,20 @@
 //! text's, where Table 1 has none). Unknown keys are errors, and every error
 //! names the file, the key path (e.g. `pipeline.method`) and the line.
 
-use serde::de::{self, Deserializer, SeqAccess, Visitor};
+use serde::de::{self, Deserializer};
 use serde::{Deserialize, Serialize, Serializer};
 
-pub use clustering::Linkage;
-use focal::FocalWeights;
-pub use focal::OnFailure;
-use std::fmt;
+pub use segmentation::{
+    EightPoint, FocalSolver, Linkage, LocalTest, Method, OnFailure, ParamError, Params,
+    WeightPreset, WeightSets,
+};
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 
-/// Which hypotheses reach the clustering (Algorithm 1 steps 4–6).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Method {
-    /// Semi-calibrated T-Linkage: focal estimation, local test (Eq. 36) and
-    /// scene-level focal consensus (Eq. 37) filter the hypotheses.
-    Semical,
-    /// The uncalibrated baseline: every refined hypothesis is kept.
-    Baseline,
-}
-
-/// The 8-point variant of Algorithm 1 step 2.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum EightPoint {
-    /// Hartley-normalised 8-point (the text).
-    Normalized,
-    /// Un-normalised system on centred pixel coordinates (the reference code).
-    Plain,
-}
-
-/// The focal-length solver of Algorithm 1 step 4.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum FocalSolver {
-    /// The robust iterative solver of Kocur, Kyselica and Kukelova (CVPR 2024),
-    /// multi-started over [`PipelineConfig::weight_sets`].
-    Kocur,
-    /// Bougnoux's closed form (Bougnoux 1998).
-    Bougnoux,
-    /// Answers computed outside this project, read from
-    /// [`PipelineConfig::focal_file`] (see [`crate::focal_file`]).
-    External,
-}
-
-/// The local test of Algorithm 1 step 5 (Eq. 36).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum LocalTest {
-    /// The thesis's Algorithm 1: a hypothesis failing Eq. 36 is discarded.
-    Algorithm1,
-    /// The reference code: only `f_avg <= 0` discards; the `|f1 - f2|` test
-    /// only decides which focals feed the KDE, and the band decides for all.
-    ReferenceCode,
-}
-
-/// A named list of multi-start weight sets for the robust focal solver.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum WeightPreset {
-    /// The reference code's four AdelaideRMF sets.
-    Adelaidermf,
-    /// The reference code's six HOPE-F sets.
-    Hopef,
-}
-
-/// Multi-start weight sets `(w_f1, w_pp1, w_f2, w_pp2)` of the robust focal
-/// solver (method.md step 4): a preset name or an explicit list.
-#[derive(Debug, Clone, PartialEq)]
-pub enum WeightSets {
-    /// One of the reference code's lists.
-    Preset(WeightPreset),
-    /// An explicit list of `[w_f1, w_pp1, w_f2, w_pp2]`.
-    Explicit(Vec<[f64; 4]>),
-}
-
-impl WeightSets {
-    /// The weight sets: [`focal::ADELAIDE_WEIGHT_SETS`],
-    /// [`focal::HOPEF_WEIGHT_SETS`] or the explicit list.
-    pub fn sets(&self) -> Vec<FocalWeights> {
-        match self {
-            WeightSets::Preset(WeightPreset::Adelaidermf) => focal::ADELAIDE_WEIGHT_SETS.to_vec(),
-            WeightSets::Preset(WeightPreset::Hopef) => focal::HOPEF_WEIGHT_SETS.to_vec(),
-            WeightSets::Explicit(sets) => sets
-                .iter()
-                .map(|&[f1, pp1, f2, pp2]| FocalWeights::new(f1, pp1, f2, pp2))
-                .collect(),
-        }
-    }
-}
-
-impl Serialize for WeightSets {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        match self {
-            WeightSets::Preset(preset) => preset.serialize(serializer),
-            WeightSets::Explicit(sets) => sets.serialize(serializer),
-        }
-    }
-}
-
-impl<'de> Deserialize<'de> for WeightSets {
-    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        struct WeightSetsVisitor;
-        impl<'de> Visitor<'de> for WeightSetsVisitor {
-            type Value = WeightSets;
-            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-                f.write_str(
-                    "`adelaidermf`, `hopef` or a list of [w_f1, w_pp1, w_f2, w_pp2] weight sets",
-                )
-            }
-            fn visit_str<E: de::Error>(self, v: &str) -> Result<WeightSets, E> {
-                match v {
-                    "adelaidermf" => Ok(WeightSets::Preset(WeightPreset::Adelaidermf)),
-                    "hopef" => Ok(WeightSets::Preset(WeightPreset::Hopef)),
-                    other => Err(E::invalid_value(de::Unexpected::Str(other), &self)),
-                }
-            }
-            fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<WeightSets, A::Error> {
-                let mut sets = Vec::new();
-                while let Some(set) = seq.next_element::<[f64; 4]>()? {
-                    sets.push(set);
-                }
-                Ok(WeightSets::Explicit(sets))
-            }
-        }
-        deserializer.deserialize_any(WeightSetsVisitor)
-    }
-}
-
-/// Every parameter of Algorithm 1 (method.md "Parameters" and the switches
-/// between the thesis text and the reference code).
-///
-/// The defaults are the thesis's Table 1 values and the text's choices; the
-/// reference implementation's AdelaideRMF parameters are
-/// `num_samples = 5000, thr_px = 4.5, tau_diff = 0.15, tau_range = 0.25`.
+/// The `[pipeline]` table of an experiment file: every parameter of
+/// [`segmentation::Params`] under the same name, with the same default (see
+/// the field docs there), and `focal_file`, the harness's source of the
+/// answers of `focal_solver = "external"`.
 ///
 /// ```
 /// let p: bench::config::PipelineConfig = toml::from_str("num_samples = 500").unwrap();
@@ -150,33 +29,17 @@ impl<'de> Deserialize<'de> for WeightSets {
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
+#[allow(missing_docs)] // each field is documented on segmentation::Params
 pub struct PipelineConfig {
-    /// `semical` (focal filtering, steps 4–6) or `baseline` (every refined
-    /// hypothesis kept). Default `semical`.
     pub method: Method,
-    /// M, the number of minimal sample sets drawn (step 1). Table 1: 3000.
     pub num_samples: usize,
-    /// Correspondences per minimal sample set (step 1). Table 1: 8.
     pub mss_size: usize,
-    /// Inlier threshold in pixels: IRLS inlier bound `thr_px²` (step 3e) and
-    /// preference scale `tau = thr_px²` (Eq. 38). Table 1: 2.5.
     pub thr_px: f64,
-    /// τ_diff, the largest relative focal difference `|f1 - f2| / f_avg` of
-    /// the local test (Eq. 36). Table 1: 0.05.
     pub tau_diff: f64,
-    /// τ_range, the half-width of the focal band around f_peak relative to
-    /// f_peak (Eq. 37). Table 1: 0.20.
     pub tau_range: f64,
-    /// Outer IRLS-Tukey iterations (step 3, Eqs. 33–34). Table 1: 5.
     pub irls_iters: usize,
-    /// Refine each minimal-sample F by IRLS-Tukey (step 3); `false` is the
-    /// "raw MSS" ablation. Default `true`.
     pub refine: bool,
-    /// 8-point variant (step 2): `normalized` (text) or `plain` (reference
-    /// code). Default `normalized`.
     pub eight_point: EightPoint,
-    /// Focal solver (step 4): `kocur`, `bougnoux` or `external`. Default
-    /// `kocur`.
     pub focal_solver: FocalSolver,
     /// The CSV of `focal_solver = "external"` (see [`crate::focal_file`]),
     /// relative to the working directory; `{seed}` is replaced by the seed.
@@ -185,54 +48,21 @@ pub struct PipelineConfig {
     /// (not serialised when empty).
     #[serde(skip_serializing_if = "String::is_empty")]
     pub focal_file: String,
-    /// Multi-start weight sets of the robust solver: `adelaidermf` (4 sets),
-    /// `hopef` (6 sets) or an explicit list. Default `adelaidermf`.
     pub weight_sets: WeightSets,
-    /// Iteration cap of the robust solver (step 4). Default 100 (the
-    /// reference's AdelaideRMF value; its HOPE-F value is 120).
     pub max_iters: usize,
-    /// What a failed focal solve yields: `report` (a failure) or `prior`
-    /// (the priors, as the reference code). Default `report`.
     pub focal_failure: OnFailure,
-    /// Truncate f1, f2 to integers after solving, as the reference code
-    /// does. Default `false`.
     pub truncate_focals: bool,
-    /// Local test variant (step 5): `algorithm1` or `reference-code`.
-    /// Default `algorithm1`.
     pub local_test: LocalTest,
-    /// Clustering (step 8): `t-linkage` or `j-linkage`. Default `t-linkage`.
     pub linkage: Linkage,
-    /// Clusters with fewer points become outliers (step 9). Default 8.
     pub min_cluster_size: usize,
-    /// Seed of the hypothesis sampling; each hypothesis draws from its own
-    /// stream derived from (seed, scene name, index) (step 1). Default 12345
-    /// (the reference code's).
+    /// The run's seed; scene `s` is segmented with the seed
+    /// [`crate::pipeline::scene_seed`]`(seed, s)`, as in every committed result.
     pub seed: u64,
 }
 
 impl Default for PipelineConfig {
     fn default() -> Self {
-        Self {
-            method: Method::Semical,
-            num_samples: 3000,
-            mss_size: 8,
-            thr_px: 2.5,
-            tau_diff: 0.05,
-            tau_range: 0.20,
-            irls_iters: 5,
-            refine: true,
-            eight_point: EightPoint::Normalized,
-            focal_solver: FocalSolver::Kocur,
-            focal_file: String::new(),
-            weight_sets: WeightSets::Preset(WeightPreset::Adelaidermf),
-            max_iters: 100,
-            focal_failure: OnFailure::Report,
-            truncate_focals: false,
-            local_test: LocalTest::Algorithm1,
-            linkage: Linkage::TLinkage,
-            min_cluster_size: 8,
-            seed: 12345,
-        }
+        Self::from_params(Params::default())
     }
 }
 
@@ -261,54 +91,74 @@ pub const PIPELINE_KEYS: [&str; 19] = [
 ];
 
 impl PipelineConfig {
-    /// Checks the ranges serde cannot: returns the offending key and why.
-    pub fn validate(&self) -> Result<(), (&'static str, String)> {
-        fn positive(key: &'static str, v: f64) -> Result<(), (&'static str, String)> {
-            if v.is_finite() && v > 0.0 {
-                Ok(())
-            } else {
-                Err((key, format!("must be a finite number > 0, got {v}")))
-            }
+    /// The table of `params`, without a focal file.
+    pub fn from_params(p: Params) -> Self {
+        Self {
+            method: p.method,
+            num_samples: p.num_samples,
+            mss_size: p.mss_size,
+            thr_px: p.thr_px,
+            tau_diff: p.tau_diff,
+            tau_range: p.tau_range,
+            irls_iters: p.irls_iters,
+            refine: p.refine,
+            eight_point: p.eight_point,
+            focal_solver: p.focal_solver,
+            focal_file: String::new(),
+            weight_sets: p.weight_sets,
+            max_iters: p.max_iters,
+            focal_failure: p.focal_failure,
+            truncate_focals: p.truncate_focals,
+            local_test: p.local_test,
+            linkage: p.linkage,
+            min_cluster_size: p.min_cluster_size,
+            seed: p.seed,
         }
-        if self.num_samples == 0 {
-            return Err(("num_samples", "must be at least 1".into()));
+    }
+
+    /// The method's parameters, with the run's seed.
+    pub fn params(&self) -> Params {
+        Params {
+            method: self.method,
+            num_samples: self.num_samples,
+            mss_size: self.mss_size,
+            thr_px: self.thr_px,
+            tau_diff: self.tau_diff,
+            tau_range: self.tau_range,
+            irls_iters: self.irls_iters,
+            refine: self.refine,
+            eight_point: self.eight_point,
+            focal_solver: self.focal_solver,
+            weight_sets: self.weight_sets.clone(),
+            max_iters: self.max_iters,
+            focal_failure: self.focal_failure,
+            truncate_focals: self.truncate_focals,
+            local_test: self.local_test,
+            linkage: self.linkage,
+            min_cluster_size: self.min_cluster_size,
+            seed: self.seed,
         }
-        if self.mss_size < 8 {
-            return Err((
-                "mss_size",
-                format!(
-                    "must be at least 8 (the 8-point algorithm), got {}",
-                    self.mss_size
-                ),
-            ));
+    }
+
+    /// The method's parameters for the scene named `scene`: the seed is
+    /// [`crate::pipeline::scene_seed`]`(seed, scene)`.
+    pub fn scene_params(&self, scene: &str) -> Params {
+        Params {
+            seed: crate::pipeline::scene_seed(self.seed, scene),
+            ..self.params()
         }
-        positive("thr_px", self.thr_px)?;
-        positive("tau_diff", self.tau_diff)?;
-        positive("tau_range", self.tau_range)?;
-        if self.refine && self.irls_iters == 0 {
-            return Err(("irls_iters", "must be at least 1 when refine = true".into()));
-        }
-        if self.max_iters == 0 {
-            return Err(("max_iters", "must be at least 1".into()));
-        }
+    }
+
+    /// Checks the ranges serde cannot ([`Params::validate`]) and that
+    /// `focal_file` is given with `focal_solver = "external"`.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        self.params().validate()?;
         if self.focal_solver == FocalSolver::External && self.focal_file.is_empty() {
-            return Err((
-                "focal_file",
-                "must name the CSV of focal lengths when focal_solver = \"external\"".into(),
-            ));
-        }
-        let sets = self.weight_sets.sets();
-        if sets.is_empty() {
-            return Err(("weight_sets", "must hold at least one weight set".into()));
-        }
-        for (i, set) in sets.iter().enumerate() {
-            let w = [set.f1, set.pp1, set.f2, set.pp2];
-            if w.iter().any(|w| !(w.is_finite() && *w > 0.0)) {
-                return Err((
-                    "weight_sets",
-                    format!("set {i} {w:?}: every weight must be a finite number > 0"),
-                ));
-            }
+            return Err(ParamError {
+                key: "focal_file",
+                message: "must name the CSV of focal lengths when focal_solver = \"external\""
+                    .into(),
+            });
         }
         Ok(())
     }
@@ -717,7 +567,7 @@ impl ExperimentConfig {
         }
         self.pipeline
             .validate()
-            .map_err(|(key, msg)| ConfigError::invalid(file, format!("pipeline.{key}"), msg))?;
+            .map_err(|e| ConfigError::invalid(file, format!("pipeline.{}", e.key), e.message))?;
         if self.plots.formats.is_empty() && self.plots.enabled {
             return Err(ConfigError::invalid(
                 file,
@@ -771,9 +621,9 @@ impl PipelineConfig {
             source,
         })?;
         let file: PipelineFile = parse_toml(&text, path)?;
-        file.pipeline.validate().map_err(|(key, msg)| {
-            let key = format!("pipeline.{key}");
-            ConfigError::invalid(path, key.clone(), msg).with_line(&text, &key)
+        file.pipeline.validate().map_err(|e| {
+            let key = format!("pipeline.{}", e.key);
+            ConfigError::invalid(path, key.clone(), e.message).with_line(&text, &key)
         })?;
         Ok(file.pipeline)
     }
@@ -962,7 +812,7 @@ mod tests {
         .unwrap();
         assert_eq!(
             c.pipeline.weight_sets.sets(),
-            vec![FocalWeights::new(1e-3, 1.0, 1e-3, 1.0)]
+            vec![focal::FocalWeights::new(1e-3, 1.0, 1e-3, 1.0)]
         );
         let err = parse(&format!("{BASE}[pipeline]\nweight_sets = \"kitti\"\n")).unwrap_err();
         assert!(err.to_string().contains("pipeline.weight_sets"), "{err}");

@@ -7,14 +7,15 @@ use crate::experiment::{Evaluator, ScenePlots};
 use crate::metrics::{frob_score, ClusteringMetrics};
 use crate::output::{file_safe, SceneResult, StageTimings};
 use crate::pipeline::{
-    estimate_hypothesis_focals, fit_cluster, focal_key, generate_hypotheses, hypothesis_key,
-    segment_with, GeneratedHypotheses, HypothesisFocals, PipelineError, Segmentation,
+    estimate_hypothesis_focals, fit_cluster, generate_hypotheses, segment_with,
+    GeneratedHypotheses, HypothesisFocals, PipelineError, Segmentation,
 };
 use crate::plots::{clusters_over_images, focal_kde, FocalKdePlot};
 use anyhow::Result;
 use datasets::Scene;
 use geometry::Correspondences;
 use nalgebra::Matrix3;
+use segmentation::{FocalKey, HypothesisKey};
 use std::collections::{BTreeMap, VecDeque};
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
@@ -24,20 +25,6 @@ pub const FOCAL_KDE_SUFFIX: &str = "focal_kde";
 /// File-name suffix of the clusters figure of a scene.
 pub const CLUSTERS_SUFFIX: &str = "clusters";
 
-/// The values the focal consensus of Algorithm 1 step 6 was computed on:
-/// `f_avg = (f1 + f2) / 2` of every hypothesis with estimated focals that
-/// passes the local test `|f1 − f2| / f_avg < τ_diff` (Eq. 36), in
-/// hypothesis order. Empty for the baseline (no focals are estimated).
-pub fn kde_values(segmentation: &Segmentation, tau_diff: f64) -> Vec<f64> {
-    segmentation
-        .hypotheses
-        .iter()
-        .filter_map(|h| h.focals)
-        .filter(|&(f1, f2)| focal::passes_local_test(f1, f2, tau_diff))
-        .map(|(f1, f2)| 0.5 * (f1 + f2))
-        .collect()
-}
-
 /// Draws the figures of one segmented scene into `plots.dir`, once per
 /// format, and returns the files written:
 ///
@@ -45,7 +32,7 @@ pub fn kde_values(segmentation: &Segmentation, tau_diff: f64) -> Vec<f64> {
 ///   (Figs. 11–12), or over blank canvases of the image size when the scene
 ///   has no images;
 /// - `<scene>_focal_kde`: for the semical method when a consensus was
-///   computed, the KDE of the [`kde_values`] with f_peak, the band
+///   computed, the KDE of the [`Segmentation::kde_values`] with f_peak, the band
 ///   `f_peak (1 ± τ_range)` (Eq. 37) and the true focal when known (Fig. 8).
 ///
 /// `<scene>` is the scene name made [`file_safe`] (`2/0900` → `2_0900`).
@@ -66,7 +53,7 @@ pub fn draw_scene_plots(
         outliers
     );
     let kde_title = format!("{} ({})", scene.name, plots.label);
-    let values = kde_values(segmentation, pipeline.tau_diff);
+    let values = segmentation.kde_values(pipeline.tau_diff);
     for format in &plots.formats {
         let ext = format.extension();
         let path = plots.dir.join(format!("{stem}_{CLUSTERS_SUFFIX}.{ext}"));
@@ -176,20 +163,25 @@ pub fn scene_result(
 pub struct PipelineEvaluator {
     scenes: Vec<Scene>,
     gt_models: Vec<Vec<Matrix3<f64>>>,
-    hypotheses: StageCache<GeneratedHypotheses>,
-    focals: StageCache<HypothesisFocals>,
+    hypotheses: StageCache<HypothesesOf, GeneratedHypotheses>,
+    focals: StageCache<FocalsOf, HypothesisFocals>,
 }
 
 /// How many results of a stage [`PipelineEvaluator`] keeps.
 const STAGE_CACHE_ENTRIES: usize = 8;
 
+/// Steps 1–3 of scene `.0` with parameters `.1`.
+type HypothesesOf = (usize, HypothesisKey);
+/// Step 4 on those hypotheses with the solver parameters and focal file.
+type FocalsOf = (HypothesesOf, FocalKey, String);
+
 /// The most recent results of a pipeline stage by key (scene and
 /// parameters), oldest dropped first.
-struct StageCache<T> {
-    entries: Mutex<VecDeque<(String, Arc<T>)>>,
+struct StageCache<K, T> {
+    entries: Mutex<VecDeque<(K, Arc<T>)>>,
 }
 
-impl<T> StageCache<T> {
+impl<K: PartialEq, T> StageCache<K, T> {
     fn new() -> Self {
         Self {
             entries: Mutex::new(VecDeque::new()),
@@ -200,7 +192,7 @@ impl<T> StageCache<T> {
     /// may compute the same key at once; both get equal values.
     fn get_or_compute<E>(
         &self,
-        key: String,
+        key: K,
         compute: impl FnOnce() -> Result<T, E>,
     ) -> Result<Arc<T>, E> {
         let cached = {
@@ -245,13 +237,17 @@ impl PipelineEvaluator {
         pipeline: &PipelineConfig,
     ) -> Result<Segmentation, PipelineError> {
         let scene = &self.scenes[index];
-        let key = format!("{index} {}", hypothesis_key(pipeline));
+        let key = (index, pipeline.params().hypothesis_key());
         let generated = self
             .hypotheses
             .get_or_compute(key.clone(), || generate_hypotheses(scene, pipeline))?;
         let focals = match pipeline.method {
             Method::Semical => Some(self.focals.get_or_compute::<PipelineError>(
-                format!("{key} {}", focal_key(pipeline)),
+                (
+                    key,
+                    pipeline.params().focal_key(),
+                    pipeline.focal_file.clone(),
+                ),
                 || estimate_hypothesis_focals(scene, pipeline, &generated),
             )?),
             Method::Baseline => None,

@@ -126,61 +126,7 @@ pub const TIMING_FIELDS: [&str; 10] = [
     "total_s",
 ];
 
-/// Hypothesis counts of one scene (Algorithm 1 steps 1–6).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct HypothesisCounts {
-    /// Minimal sample sets drawn (M).
-    pub generated: usize,
-    /// Hypotheses that survived the 8-point fit and the refinement (step 3).
-    pub refined: usize,
-    /// Hypotheses that passed the local test (Eq. 36); equals `refined` for
-    /// the baseline.
-    pub local_ok: usize,
-    /// Hypotheses that reached the clustering.
-    pub kept: usize,
-    /// Failed focal solves that left a hypothesis without focals (step 4).
-    pub focal_failures: usize,
-    /// Hypotheses whose focals are the prior standing in for a failed solve
-    /// (step 4 with `focal_failure = "prior"`).
-    pub focal_priors: usize,
-}
-
-/// Wall time of each stage of Algorithm 1 for one scene, in seconds.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct StageTimings {
-    /// Steps 1–2: sampling and the 8-point fits.
-    pub sampling: f64,
-    /// Step 3: IRLS-Tukey refinement.
-    pub refine: f64,
-    /// Step 4: focal estimation.
-    pub focal: f64,
-    /// Steps 5–6: local test, KDE consensus and band.
-    pub consensus: f64,
-    /// Step 7: preference matrix.
-    pub preferences: f64,
-    /// Steps 8–9: T-Linkage / J-Linkage and the size filter.
-    pub clustering: f64,
-    /// The 8-point fit of each final cluster.
-    pub cluster_fit: f64,
-    /// Whole scene.
-    pub total: f64,
-}
-
-impl StageTimings {
-    /// The stages in [`TIMING_FIELDS`] order.
-    pub fn values(&self) -> [f64; 8] {
-        [
-            self.sampling,
-            self.refine,
-            self.focal,
-            self.consensus,
-            self.preferences,
-            self.clustering,
-            self.cluster_fit,
-            self.total,
-        ]
-    }
-}
+pub use segmentation::{HypothesisCounts, StageTimings};
 
 /// Everything `per_scene.csv` records about one (scene, combination) besides
 /// the parameters and the scene name.

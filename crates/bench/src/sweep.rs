@@ -88,7 +88,7 @@ fn pipeline_with(
         .map_err(|e: toml::de::Error| e.message().trim().replace('\n', "; "))?;
     config
         .validate()
-        .map_err(|(key, msg)| format!("{key} {msg}"))?;
+        .map_err(|e| format!("{} {}", e.key, e.message))?;
     Ok(config)
 }
 

@@ -216,9 +216,8 @@ fn degenerate_input_is_reported_not_panicked_on() {
     assert!(
         matches!(
             err,
-            PipelineError::TooFewPoints {
-                n: 7,
-                needed: 8,
+            PipelineError::Segmentation {
+                source: segmentation::SegmentationError::TooFewPoints { n: 7, needed: 8 },
                 ..
             }
         ),

@@ -120,7 +120,7 @@ impl Default for RobustFocalParams {
 /// What to do when the robust solver fails (method.md step 4).
 ///
 /// Serialised in lowercase: `"report"` or `"prior"`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum OnFailure {
     /// Report the failure as an error (the project's default).

@@ -1,12 +1,14 @@
 //! `sctl segment --matches FILE`: segments one pair of the user's own
 //! matches and writes one label per input row (−1 = outlier), optionally
-//! with a figure of the clusters over the two images.
+//! with a figure of the clusters over the two images. The samples are drawn
+//! with the config's seed as it is (not mixed with the file name), so the
+//! labels are those of the library and the Python package on the same input.
 
 use anyhow::{bail, Context, Result};
 use bench::config::PipelineConfig;
 use bench::dataset::load_match_file;
 use bench::evaluate::{ground_truth_models, scene_result};
-use bench::pipeline::segment;
+use bench::pipeline::matches;
 use bench::plots::{clusters_over_images, PlotFormat};
 use image::{ImageFormat, ImageReader, RgbImage};
 use std::fmt::Write as _;
@@ -101,7 +103,7 @@ pub fn run(args: Args) -> Result<()> {
     };
     let threads = args.threads.map_or(0, usize::from);
     let segmentation = bench::experiment::thread_pool(threads)?
-        .install(|| segment(&scene, &config))
+        .install(|| segmentation::segment(&matches(&scene), &config.params()))
         .with_context(|| args.matches.display().to_string())?;
     let result = scene_result(&scene, &segmentation, &ground_truth_models(&scene))?;
 

@@ -1,0 +1,138 @@
+//! Steps 1–3 of Algorithm 1: minimal samples, their 8-point fits and the
+//! IRLS-Tukey refinement of each.
+
+use crate::{minimal_sample, EightPoint, Matches, Params, SegmentationError};
+use geometry::{
+    eight_point_normalized, eight_point_plain, Correspondences, IrlsParams, IrlsWorkspace,
+};
+use nalgebra::Matrix3;
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// The hypotheses of steps 1–3 for one input. They depend only on the
+/// matches and on [`Params::hypothesis_key`], so one set serves every
+/// parameter set that shares that key.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GeneratedHypotheses {
+    /// The correspondences in principal-point-centred coordinates.
+    pub points: Correspondences,
+    /// Whether hypothesis `j`'s minimal sample gave an 8-point fit.
+    pub fitted: Vec<bool>,
+    /// The model of hypothesis `j` (refined, or the raw fit when `refine`
+    /// is off), centred coordinates; None when the fit or the refinement
+    /// failed.
+    pub models: Vec<Option<Matrix3<f64>>>,
+    /// Wall time of steps 1–2, seconds.
+    pub sampling_seconds: f64,
+    /// Wall time of step 3, seconds.
+    pub refine_seconds: f64,
+}
+
+impl GeneratedHypotheses {
+    /// Indices of the hypotheses with a model, in order.
+    pub fn refined(&self) -> Vec<usize> {
+        (0..self.models.len())
+            .filter(|&j| self.models[j].is_some())
+            .collect()
+    }
+}
+
+/// The matches in principal-point-centred coordinates, checked: the
+/// parameters, the camera fields, finite points of equal count, at least
+/// `mss_size` of them.
+pub fn centred_points(
+    matches: &Matches,
+    params: &Params,
+) -> Result<Correspondences, SegmentationError> {
+    params.validate()?;
+    matches.validate()?;
+    let pp = matches.principal_point;
+    let points = Correspondences::new(matches.points1, matches.points2)
+        .map_err(SegmentationError::InvalidPoints)?
+        .shifted(pp, pp);
+    if points.len() < params.mss_size {
+        return Err(SegmentationError::TooFewPoints {
+            n: points.len(),
+            needed: params.mss_size,
+        });
+    }
+    Ok(points)
+}
+
+/// Steps 1–3 of Algorithm 1 (see [`GeneratedHypotheses`]), hypotheses in
+/// parallel in the caller's rayon pool; the result does not depend on the
+/// number of threads.
+///
+/// Errors on invalid parameters or camera fields, fewer points than
+/// `mss_size` and non-finite coordinates.
+pub fn generate_hypotheses(
+    matches: &Matches,
+    params: &Params,
+) -> Result<GeneratedHypotheses, SegmentationError> {
+    let points = centred_points(matches, params)?;
+
+    let t = Instant::now();
+    let fits = fit_minimal_samples(&points, params);
+    let sampling_seconds = t.elapsed().as_secs_f64();
+
+    let t = Instant::now();
+    let models = refine_fits(&points, &fits, params);
+    let refine_seconds = t.elapsed().as_secs_f64();
+    Ok(GeneratedHypotheses {
+        fitted: fits.iter().map(Option::is_some).collect(),
+        points,
+        models,
+        sampling_seconds,
+        refine_seconds,
+    })
+}
+
+/// A minimal sample and its 8-point fit.
+struct SampleFit {
+    sample: Vec<usize>,
+    f: Matrix3<f64>,
+}
+
+/// Steps 1–2: each minimal sample and its 8-point fit (None when the sample
+/// is degenerate or the fit not finite).
+fn fit_minimal_samples(points: &Correspondences, params: &Params) -> Vec<Option<SampleFit>> {
+    let n = points.len();
+    (0..params.num_samples)
+        .into_par_iter()
+        .map(|j| {
+            let sample = minimal_sample(params.seed, j, n, params.mss_size);
+            let subset = points.subset(&sample).ok()?;
+            let f = match params.eight_point {
+                EightPoint::Normalized => eight_point_normalized(&subset),
+                EightPoint::Plain => eight_point_plain(&subset),
+            }
+            .ok()?;
+            f.iter()
+                .all(|v| v.is_finite())
+                .then_some(SampleFit { sample, f })
+        })
+        .collect()
+}
+
+/// Step 3: IRLS-Tukey from each fit (or the raw fit when `refine` is off).
+fn refine_fits(
+    points: &Correspondences,
+    fits: &[Option<SampleFit>],
+    params: &Params,
+) -> Vec<Option<Matrix3<f64>>> {
+    if !params.refine {
+        return fits.iter().map(|fit| fit.as_ref().map(|s| s.f)).collect();
+    }
+    let irls = IrlsParams {
+        thr_px: params.thr_px,
+        max_iters: params.irls_iters,
+        ..IrlsParams::default()
+    };
+    fits.par_iter()
+        .map_init(IrlsWorkspace::new, |ws, fit| {
+            let fit = fit.as_ref()?;
+            let refined = ws.run(points, &fit.sample, Some(&fit.f), &irls).ok()?;
+            Some(refined.f)
+        })
+        .collect()
+}

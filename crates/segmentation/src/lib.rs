@@ -1,0 +1,55 @@
+#![warn(missing_docs)]
+//! Two-view motion segmentation with semi-calibrated cameras: Algorithm 1 of
+//! the thesis ("Two-View Motion Segmentation with Semi-Calibrated Cameras via
+//! Hypothesis Filtering") as a library.
+//!
+//! Given point matches between two images taken by one camera of unknown
+//! focal length, [`segment`] splits them into rigid motions (labels 0, 1, …)
+//! and outliers (−1):
+//!
+//! 1. M minimal samples, drawn per hypothesis from its own random stream
+//!    ([`minimal_sample`]);
+//! 2. the 8-point F of each (Hartley-normalised or plain, [`EightPoint`]);
+//! 3. IRLS-Tukey refinement ([`generate_hypotheses`]);
+//! 4. focal lengths of each F ([`estimate_hypothesis_focals`]: the robust
+//!    Kocur–Kyselica–Kukelova solver or Bougnoux's formula, or answers
+//!    handed in as data, [`HypothesisFocals::from_answers`]);
+//! 5. the local test (Eq. 36) and 6. the KDE focal consensus and band
+//!    (Eq. 37) ([`focal_filter`]) — the `semical` method; the `baseline`
+//!    keeps every refined hypothesis;
+//! 7. preferences (Eq. 38), 8. T-Linkage (Eqs. 39–40) or J-Linkage and
+//! 9. the size filter ([`segment_with`]).
+//!
+//! All geometry runs in principal-point-centred pixel coordinates: every F
+//! of a [`Segmentation`] satisfies `x2ᵀ F x1 = 0` for
+//! `x = (x − pp_x, y − pp_y, 1)`. The labels depend on the input, the
+//! parameters and [`Params::seed`] only, not on the number of threads
+//! (hypotheses are computed in the caller's rayon pool).
+
+mod error;
+mod filter;
+mod focals;
+mod hypotheses;
+mod input;
+mod params;
+mod result;
+mod sampling;
+mod segment;
+
+pub use error::SegmentationError;
+pub use filter::{focal_filter, FilterOutcome};
+pub use focal::FocalConsensus;
+pub use focals::{
+    estimate_focals, estimate_hypothesis_focals, focals_as_used, FocalAnswer, HypothesisFocals,
+};
+pub use hypotheses::{centred_points, generate_hypotheses, GeneratedHypotheses};
+pub use input::{image_centre, Matches};
+pub use params::{
+    EightPoint, FocalKey, FocalSolver, HypothesisKey, Linkage, LocalTest, Method, OnFailure,
+    ParamError, Params, WeightPreset, WeightSets, PARAM_KEYS,
+};
+pub use result::{
+    ClusterModel, Hypothesis, HypothesisCounts, HypothesisStatus, Segmentation, StageTimings,
+};
+pub use sampling::{hypothesis_rng, minimal_sample, splitmix64};
+pub use segment::{fit_cluster, segment, segment_with};

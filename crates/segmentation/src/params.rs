@@ -1,0 +1,510 @@
+//! The parameters of Algorithm 1 ([`Params`]) and the switches between the
+//! thesis text and its reference implementation.
+//!
+//! Every parameter of method.md's "Parameters" table is a field of
+//! [`Params`]; its default is the thesis's Table 1 value (or the text's
+//! choice where Table 1 has none). With the `serde` feature the struct reads
+//! from and writes to TOML/JSON under the same names, unknown keys refused.
+
+pub use clustering::Linkage;
+use focal::FocalWeights;
+pub use focal::OnFailure;
+use thiserror::Error;
+
+/// Which hypotheses reach the clustering (Algorithm 1 steps 4–6).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
+pub enum Method {
+    /// Semi-calibrated T-Linkage: focal estimation, local test (Eq. 36) and
+    /// scene-level focal consensus (Eq. 37) filter the hypotheses.
+    Semical,
+    /// The uncalibrated baseline: every refined hypothesis is kept.
+    Baseline,
+}
+
+/// The 8-point variant of Algorithm 1 step 2.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
+pub enum EightPoint {
+    /// Hartley-normalised 8-point (the text).
+    Normalized,
+    /// Un-normalised system on centred pixel coordinates (the reference code).
+    Plain,
+}
+
+/// The focal-length solver of Algorithm 1 step 4.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
+pub enum FocalSolver {
+    /// The robust iterative solver of Kocur, Kyselica and Kukelova (CVPR 2024),
+    /// multi-started over [`Params::weight_sets`].
+    Kocur,
+    /// Bougnoux's closed form (Bougnoux 1998).
+    Bougnoux,
+    /// Answers computed outside this crate and handed in as data
+    /// ([`crate::HypothesisFocals::from_answers`], then
+    /// [`crate::segment_with`]); [`crate::segment`] refuses it.
+    External,
+}
+
+/// The local test of Algorithm 1 step 5 (Eq. 36).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
+pub enum LocalTest {
+    /// The thesis's Algorithm 1: a hypothesis failing Eq. 36 is discarded.
+    Algorithm1,
+    /// The reference code: only `f_avg <= 0` discards; the `|f1 - f2|` test
+    /// only decides which focals feed the KDE, and the band decides for all.
+    ReferenceCode,
+}
+
+/// A named list of multi-start weight sets for the robust focal solver.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
+pub enum WeightPreset {
+    /// The reference code's four AdelaideRMF sets.
+    Adelaidermf,
+    /// The reference code's six HOPE-F sets.
+    Hopef,
+}
+
+/// Multi-start weight sets `(w_f1, w_pp1, w_f2, w_pp2)` of the robust focal
+/// solver (method.md step 4): a preset name or an explicit list. Serialised
+/// as `"adelaidermf"`, `"hopef"` or a list of `[w_f1, w_pp1, w_f2, w_pp2]`.
+#[derive(Debug, Clone, PartialEq)]
+pub enum WeightSets {
+    /// One of the reference code's lists.
+    Preset(WeightPreset),
+    /// An explicit list of `[w_f1, w_pp1, w_f2, w_pp2]`.
+    Explicit(Vec<[f64; 4]>),
+}
+
+impl WeightSets {
+    /// The weight sets: [`focal::ADELAIDE_WEIGHT_SETS`],
+    /// [`focal::HOPEF_WEIGHT_SETS`] or the explicit list.
+    pub fn sets(&self) -> Vec<FocalWeights> {
+        match self {
+            WeightSets::Preset(WeightPreset::Adelaidermf) => focal::ADELAIDE_WEIGHT_SETS.to_vec(),
+            WeightSets::Preset(WeightPreset::Hopef) => focal::HOPEF_WEIGHT_SETS.to_vec(),
+            WeightSets::Explicit(sets) => sets
+                .iter()
+                .map(|&[f1, pp1, f2, pp2]| FocalWeights::new(f1, pp1, f2, pp2))
+                .collect(),
+        }
+    }
+
+    /// The weights as plain numbers, for hashing and comparing parameter sets.
+    fn key(&self) -> Vec<[u64; 4]> {
+        self.sets()
+            .iter()
+            .map(|w| [w.f1, w.pp1, w.f2, w.pp2].map(f64::to_bits))
+            .collect()
+    }
+}
+
+/// Every parameter of Algorithm 1 (method.md "Parameters" and the switches
+/// between the thesis text and the reference code).
+///
+/// The defaults are the thesis's Table 1 values and the text's choices; the
+/// reference implementation's AdelaideRMF parameters are
+/// `num_samples = 5000, thr_px = 4.5, tau_diff = 0.15, tau_range = 0.25`.
+///
+/// ```
+/// let p = segmentation::Params { num_samples: 500, ..Default::default() };
+/// assert_eq!(p.thr_px, 2.5); // Table 1
+/// assert!(p.validate().is_ok());
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(deny_unknown_fields, default)
+)]
+pub struct Params {
+    /// `semical` (focal filtering, steps 4–6) or `baseline` (every refined
+    /// hypothesis kept). Default `semical`.
+    pub method: Method,
+    /// M, the number of minimal sample sets drawn (step 1). Table 1: 3000.
+    pub num_samples: usize,
+    /// Correspondences per minimal sample set (step 1). Table 1: 8.
+    pub mss_size: usize,
+    /// Inlier threshold in pixels: IRLS inlier bound `thr_px²` (step 3e) and
+    /// preference scale `tau = thr_px²` (Eq. 38). Table 1: 2.5.
+    pub thr_px: f64,
+    /// τ_diff, the largest relative focal difference `|f1 - f2| / f_avg` of
+    /// the local test (Eq. 36). Table 1: 0.05.
+    pub tau_diff: f64,
+    /// τ_range, the half-width of the focal band around f_peak relative to
+    /// f_peak (Eq. 37). Table 1: 0.20.
+    pub tau_range: f64,
+    /// Outer IRLS-Tukey iterations (step 3, Eqs. 33–34). Table 1: 5.
+    pub irls_iters: usize,
+    /// Refine each minimal-sample F by IRLS-Tukey (step 3); `false` is the
+    /// "raw MSS" ablation. Default `true`.
+    pub refine: bool,
+    /// 8-point variant (step 2): `normalized` (text) or `plain` (reference
+    /// code). Default `normalized`.
+    pub eight_point: EightPoint,
+    /// Focal solver (step 4): `kocur`, `bougnoux` or `external`. Default
+    /// `kocur`.
+    pub focal_solver: FocalSolver,
+    /// Multi-start weight sets of the robust solver: `adelaidermf` (4 sets),
+    /// `hopef` (6 sets) or an explicit list. Default `adelaidermf`.
+    pub weight_sets: WeightSets,
+    /// Iteration cap of the robust solver (step 4). Default 100 (the
+    /// reference's AdelaideRMF value; its HOPE-F value is 120).
+    pub max_iters: usize,
+    /// What a failed focal solve yields: `report` (a failure) or `prior`
+    /// (the priors, as the reference code). Default `report`.
+    pub focal_failure: OnFailure,
+    /// Truncate f1, f2 to integers after solving, as the reference code
+    /// does. Default `false`.
+    pub truncate_focals: bool,
+    /// Local test variant (step 5): `algorithm1` or `reference-code`.
+    /// Default `algorithm1`.
+    pub local_test: LocalTest,
+    /// Clustering (step 8): `t-linkage` or `j-linkage`. Default `t-linkage`.
+    pub linkage: Linkage,
+    /// Clusters with fewer points become outliers (step 9). Default 8.
+    pub min_cluster_size: usize,
+    /// Seed of the hypothesis sampling: hypothesis `j` draws from ChaCha8
+    /// stream `j` under a key expanded from the seed ([`crate::hypothesis_rng`]),
+    /// so the labels depend on the seed and the input only. Default 12345
+    /// (the reference code's).
+    pub seed: u64,
+}
+
+impl Default for Params {
+    fn default() -> Self {
+        Self {
+            method: Method::Semical,
+            num_samples: 3000,
+            mss_size: 8,
+            thr_px: 2.5,
+            tau_diff: 0.05,
+            tau_range: 0.20,
+            irls_iters: 5,
+            refine: true,
+            eight_point: EightPoint::Normalized,
+            focal_solver: FocalSolver::Kocur,
+            weight_sets: WeightSets::Preset(WeightPreset::Adelaidermf),
+            max_iters: 100,
+            focal_failure: OnFailure::Report,
+            truncate_focals: false,
+            local_test: LocalTest::Algorithm1,
+            linkage: Linkage::TLinkage,
+            min_cluster_size: 8,
+            seed: 12345,
+        }
+    }
+}
+
+/// The keys of [`Params`] in declaration order.
+pub const PARAM_KEYS: [&str; 18] = [
+    "method",
+    "num_samples",
+    "mss_size",
+    "thr_px",
+    "tau_diff",
+    "tau_range",
+    "irls_iters",
+    "refine",
+    "eight_point",
+    "focal_solver",
+    "weight_sets",
+    "max_iters",
+    "focal_failure",
+    "truncate_focals",
+    "local_test",
+    "linkage",
+    "min_cluster_size",
+    "seed",
+];
+
+/// A parameter out of its range: the [`Params`] key and why.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+#[error("invalid parameter `{key}`: {message}")]
+pub struct ParamError {
+    /// The [`Params`] field.
+    pub key: &'static str,
+    /// What is wrong.
+    pub message: String,
+}
+
+impl ParamError {
+    fn new(key: &'static str, message: impl Into<String>) -> Self {
+        Self {
+            key,
+            message: message.into(),
+        }
+    }
+}
+
+impl Params {
+    /// Checks the ranges the types cannot: the first offending key and why.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        fn positive(key: &'static str, v: f64) -> Result<(), ParamError> {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(ParamError::new(
+                    key,
+                    format!("must be a finite number > 0, got {v}"),
+                ))
+            }
+        }
+        if self.num_samples == 0 {
+            return Err(ParamError::new("num_samples", "must be at least 1"));
+        }
+        if self.mss_size < 8 {
+            return Err(ParamError::new(
+                "mss_size",
+                format!(
+                    "must be at least 8 (the 8-point algorithm), got {}",
+                    self.mss_size
+                ),
+            ));
+        }
+        positive("thr_px", self.thr_px)?;
+        positive("tau_diff", self.tau_diff)?;
+        positive("tau_range", self.tau_range)?;
+        if self.refine && self.irls_iters == 0 {
+            return Err(ParamError::new(
+                "irls_iters",
+                "must be at least 1 when refine = true",
+            ));
+        }
+        if self.max_iters == 0 {
+            return Err(ParamError::new("max_iters", "must be at least 1"));
+        }
+        self.validate_weight_sets()
+    }
+
+    fn validate_weight_sets(&self) -> Result<(), ParamError> {
+        let sets = self.weight_sets.sets();
+        if sets.is_empty() {
+            return Err(ParamError::new(
+                "weight_sets",
+                "must hold at least one weight set",
+            ));
+        }
+        for (i, set) in sets.iter().enumerate() {
+            let w = [set.f1, set.pp1, set.f2, set.pp2];
+            if w.iter().any(|w| !(w.is_finite() && *w > 0.0)) {
+                return Err(ParamError::new(
+                    "weight_sets",
+                    format!("set {i} {w:?}: every weight must be a finite number > 0"),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// What steps 1–3 depend on ([`crate::generate_hypotheses`]): two
+    /// parameter sets with equal keys give the same hypotheses on an input.
+    pub fn hypothesis_key(&self) -> HypothesisKey {
+        HypothesisKey {
+            seed: self.seed,
+            num_samples: self.num_samples,
+            mss_size: self.mss_size,
+            eight_point: self.eight_point,
+            refine: self.refine,
+            thr_px_bits: self.thr_px.to_bits(),
+            irls_iters: self.irls_iters,
+        }
+    }
+
+    /// What step 4 depends on besides the hypotheses and the focal prior
+    /// ([`crate::estimate_hypothesis_focals`]).
+    pub fn focal_key(&self) -> FocalKey {
+        FocalKey {
+            solver: self.focal_solver,
+            weight_sets: self.weight_sets.key(),
+            max_iters: self.max_iters,
+            failure: self.focal_failure,
+            truncate: self.truncate_focals,
+        }
+    }
+}
+
+/// The parameters of steps 1–3 ([`Params::hypothesis_key`]).
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub struct HypothesisKey {
+    seed: u64,
+    num_samples: usize,
+    mss_size: usize,
+    eight_point: EightPoint,
+    refine: bool,
+    thr_px_bits: u64,
+    irls_iters: usize,
+}
+
+/// The parameters of step 4 ([`Params::focal_key`]).
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub struct FocalKey {
+    solver: FocalSolver,
+    weight_sets: Vec<[u64; 4]>,
+    max_iters: usize,
+    failure: OnFailure,
+    truncate: bool,
+}
+
+#[cfg(feature = "serde")]
+mod weight_sets_serde {
+    use super::{WeightPreset, WeightSets};
+    use serde::de::{self, Deserializer, SeqAccess, Visitor};
+    use serde::{Deserialize, Serialize, Serializer};
+    use std::fmt;
+
+    impl Serialize for WeightSets {
+        fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+            match self {
+                WeightSets::Preset(preset) => preset.serialize(serializer),
+                WeightSets::Explicit(sets) => sets.serialize(serializer),
+            }
+        }
+    }
+
+    struct WeightSetsVisitor;
+
+    impl<'de> Visitor<'de> for WeightSetsVisitor {
+        type Value = WeightSets;
+        fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+            f.write_str(
+                "`adelaidermf`, `hopef` or a list of [w_f1, w_pp1, w_f2, w_pp2] weight sets",
+            )
+        }
+        fn visit_str<E: de::Error>(self, v: &str) -> Result<WeightSets, E> {
+            match v {
+                "adelaidermf" => Ok(WeightSets::Preset(WeightPreset::Adelaidermf)),
+                "hopef" => Ok(WeightSets::Preset(WeightPreset::Hopef)),
+                other => Err(E::invalid_value(de::Unexpected::Str(other), &self)),
+            }
+        }
+        fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<WeightSets, A::Error> {
+            let mut sets = Vec::new();
+            while let Some(set) = seq.next_element::<[f64; 4]>()? {
+                sets.push(set);
+            }
+            Ok(WeightSets::Explicit(sets))
+        }
+    }
+
+    impl<'de> Deserialize<'de> for WeightSets {
+        fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+            deserializer.deserialize_any(WeightSetsVisitor)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_range_check_names_its_key() {
+        let cases: [(&str, Params); 7] = [
+            (
+                "num_samples",
+                Params {
+                    num_samples: 0,
+                    ..Default::default()
+                },
+            ),
+            (
+                "mss_size",
+                Params {
+                    mss_size: 7,
+                    ..Default::default()
+                },
+            ),
+            (
+                "thr_px",
+                Params {
+                    thr_px: f64::NAN,
+                    ..Default::default()
+                },
+            ),
+            (
+                "tau_diff",
+                Params {
+                    tau_diff: 0.0,
+                    ..Default::default()
+                },
+            ),
+            (
+                "tau_range",
+                Params {
+                    tau_range: -0.1,
+                    ..Default::default()
+                },
+            ),
+            (
+                "irls_iters",
+                Params {
+                    irls_iters: 0,
+                    ..Default::default()
+                },
+            ),
+            (
+                "weight_sets",
+                Params {
+                    weight_sets: WeightSets::Explicit(vec![[1.0, 0.0, 1.0, 1.0]]),
+                    ..Default::default()
+                },
+            ),
+        ];
+        for (key, params) in cases {
+            assert_eq!(params.validate().unwrap_err().key, key);
+        }
+        assert!(Params::default().validate().is_ok());
+        let no_refine = Params {
+            refine: false,
+            irls_iters: 0,
+            ..Default::default()
+        };
+        assert!(no_refine.validate().is_ok());
+    }
+
+    #[test]
+    fn keys_separate_what_changes_the_stage() {
+        let a = Params::default();
+        let b = Params {
+            method: Method::Baseline,
+            tau_range: 0.3,
+            ..a.clone()
+        };
+        assert_eq!(a.hypothesis_key(), b.hypothesis_key());
+        assert_eq!(a.focal_key(), b.focal_key());
+        let c = Params {
+            thr_px: 3.0,
+            ..a.clone()
+        };
+        assert_ne!(a.hypothesis_key(), c.hypothesis_key());
+        let d = Params {
+            weight_sets: WeightSets::Preset(WeightPreset::Hopef),
+            ..a.clone()
+        };
+        assert_ne!(a.focal_key(), d.focal_key());
+    }
+}

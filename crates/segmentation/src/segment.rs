@@ -1,0 +1,240 @@
+//! Algorithm 1 end to end (method.md steps 1–9), and steps 5–9 on
+//! hypotheses and focals computed beforehand.
+
+use crate::{
+    estimate_hypothesis_focals, focal_filter, generate_hypotheses, ClusterModel,
+    GeneratedHypotheses, Hypothesis, HypothesisCounts, HypothesisFocals, HypothesisStatus, Matches,
+    Method, Params, Segmentation, SegmentationError, StageTimings,
+};
+use clustering::{Clustering, ClusteringParams};
+use geometry::{eight_point_normalized, sampson_distances_squared, Correspondences};
+use nalgebra::Matrix3;
+use std::time::Instant;
+
+/// Segments `matches` by Algorithm 1 (method.md steps 1–9) with `params`.
+///
+/// Errors only on input that admits no hypothesis at all (invalid
+/// parameters or camera fields, fewer points than `mss_size`, non-finite
+/// coordinates) and for `focal_solver = "external"` (use
+/// [`segment_with`]). When every hypothesis is rejected the result is an
+/// all-outlier segmentation whose [`Segmentation::degenerate`] says why.
+///
+/// ```
+/// use segmentation::{segment, Matches, Method, Params};
+/// // Two rigid motions seen by one camera: the second moves sideways.
+/// let mut p1 = Vec::new();
+/// let mut p2 = Vec::new();
+/// for i in 0..60 {
+///     let (x, y, z) = ((i % 10) as f64 - 4.5, (i / 10) as f64 - 2.5, 8.0 + (i % 7) as f64);
+///     let shift = if i < 30 { [0.4, 0.0] } else { [-0.3, 0.2] };
+///     p1.push([500.0 * x / z + 320.0, 500.0 * y / z + 240.0]);
+///     p2.push([500.0 * (x + shift[0]) / z + 320.0, 500.0 * (y + shift[1]) / z + 240.0]);
+/// }
+/// let params = Params { method: Method::Baseline, num_samples: 300, ..Default::default() };
+/// let seg = segment(&Matches::new(&p1, &p2, (640, 480)), &params).unwrap();
+/// assert_eq!(seg.labels.len(), 60);
+/// assert_eq!(seg.counts.generated, 300);
+/// ```
+pub fn segment(matches: &Matches, params: &Params) -> Result<Segmentation, SegmentationError> {
+    let started = Instant::now();
+    let hypotheses = generate_hypotheses(matches, params)?;
+    let focals = (params.method == Method::Semical)
+        .then(|| estimate_hypothesis_focals(&hypotheses, params, matches.focal_prior))
+        .transpose()?;
+    let mut segmentation = segment_with(matches, params, &hypotheses, focals.as_ref())?;
+    segmentation.timings.total = started.elapsed().as_secs_f64();
+    Ok(segmentation)
+}
+
+/// Steps 5–9 of Algorithm 1 on hypotheses generated for these matches with
+/// these parameters ([`generate_hypotheses`]) and, for semical, their focal
+/// lengths ([`estimate_hypothesis_focals`] or
+/// [`HypothesisFocals::from_answers`]); the stage timings of those steps
+/// are copied from them. The result is that of [`segment`].
+///
+/// Errors when `focals` is missing for semical or the stages do not belong
+/// to these matches and parameters, and as [`segment`].
+pub fn segment_with(
+    matches: &Matches,
+    params: &Params,
+    generated: &GeneratedHypotheses,
+    focals: Option<&HypothesisFocals>,
+) -> Result<Segmentation, SegmentationError> {
+    let started = Instant::now();
+    params.validate()?;
+    check_stages(matches, params, generated, focals)?;
+    let mut timings = StageTimings {
+        sampling: generated.sampling_seconds,
+        refine: generated.refine_seconds,
+        ..StageTimings::default()
+    };
+    let mut hypotheses = initial_statuses(generated);
+    let refined = generated.refined();
+    let mut counts = HypothesisCounts {
+        generated: generated.models.len(),
+        refined: refined.len(),
+        local_ok: refined.len(),
+        ..HypothesisCounts::default()
+    };
+
+    // Steps 4–6: focal lengths, local test, consensus and band.
+    let mut consensus = None;
+    let mut consensus_fallback = false;
+    if let Some(focals) = focals.filter(|_| params.method == Method::Semical) {
+        for &j in &refined {
+            hypotheses[j].focals = focals.focals[j];
+            counts.focal_failures += usize::from(focals.focals[j].is_none());
+            counts.focal_priors += usize::from(focals.from_prior[j]);
+        }
+        timings.focal = focals.seconds;
+        let t = Instant::now();
+        let outcome = focal_filter(&mut hypotheses, &refined, params);
+        (consensus, consensus_fallback, counts.local_ok) =
+            (outcome.consensus, outcome.fallback, outcome.local_ok);
+        timings.consensus = t.elapsed().as_secs_f64();
+    }
+    // Steps 1–4 ran before this call (or were shared with another one).
+    let shared_seconds = timings.sampling + timings.refine + timings.focal;
+    let kept: Vec<usize> = refined
+        .iter()
+        .copied()
+        .filter(|&j| hypotheses[j].status == HypothesisStatus::Kept)
+        .collect();
+    counts.kept = kept.len();
+    let mut segmentation = Segmentation {
+        labels: vec![-1; generated.points.len()],
+        counts,
+        hypotheses,
+        consensus,
+        consensus_fallback,
+        clusters: Vec::new(),
+        clusters_before_filter: 0,
+        timings,
+        degenerate: None,
+    };
+    if kept.is_empty() {
+        segmentation.degenerate = Some(nothing_kept_reason(generated).to_string());
+    } else {
+        cluster_kept(&mut segmentation, generated, &kept, params)?;
+    }
+    segmentation.timings.total = started.elapsed().as_secs_f64() + shared_seconds;
+    Ok(segmentation)
+}
+
+/// Checks that the stages were computed for these matches and parameters.
+fn check_stages(
+    matches: &Matches,
+    params: &Params,
+    generated: &GeneratedHypotheses,
+    focals: Option<&HypothesisFocals>,
+) -> Result<(), SegmentationError> {
+    let (n, m) = (generated.points.len(), generated.models.len());
+    if n != matches.len() || m != params.num_samples {
+        return Err(SegmentationError::StageMismatch(format!(
+            "hypotheses generated for {n} points and M = {m}, not {} and {}",
+            matches.len(),
+            params.num_samples
+        )));
+    }
+    if params.method == Method::Semical
+        && !focals.is_some_and(|f| f.focals.len() == m && f.from_prior.len() == m)
+    {
+        return Err(SegmentationError::StageMismatch(format!(
+            "semical needs the focal lengths of step 4 for all {m} hypotheses"
+        )));
+    }
+    Ok(())
+}
+
+/// Each hypothesis's status after steps 2–3 (kept unless it failed there).
+fn initial_statuses(generated: &GeneratedHypotheses) -> Vec<Hypothesis> {
+    generated
+        .fitted
+        .iter()
+        .zip(&generated.models)
+        .map(|(&fitted, model)| Hypothesis {
+            status: match (fitted, model) {
+                (false, _) => HypothesisStatus::Degenerate,
+                (true, None) => HypothesisStatus::RefineFailed,
+                (true, Some(_)) => HypothesisStatus::Kept,
+            },
+            focals: None,
+        })
+        .collect()
+}
+
+fn nothing_kept_reason(generated: &GeneratedHypotheses) -> &'static str {
+    if generated.fitted.iter().all(|&fitted| !fitted) {
+        "every minimal sample is degenerate"
+    } else {
+        "no hypothesis survived the refinement"
+    }
+}
+
+/// Steps 7–9 on the kept hypotheses: preferences (Eq. 38), T-/J-Linkage,
+/// the size filter and the 8-point F of each final cluster.
+fn cluster_kept(
+    segmentation: &mut Segmentation,
+    generated: &GeneratedHypotheses,
+    kept: &[usize],
+    params: &Params,
+) -> Result<(), SegmentationError> {
+    let points = &generated.points;
+    let clustering_params = ClusteringParams {
+        linkage: params.linkage,
+        min_cluster_size: params.min_cluster_size,
+    };
+
+    // Step 7: preferences, one hypothesis (column) at a time.
+    let t = Instant::now();
+    let tau = params.thr_px * params.thr_px;
+    let mut builder = clustering_params.preference_builder(points.len(), tau)?;
+    let mut residuals = vec![0.0; points.len()];
+    for model in kept.iter().filter_map(|&j| generated.models[j].as_ref()) {
+        sampson_distances_squared(model, points, &mut residuals);
+        builder.push_residuals(&residuals)?;
+    }
+    let preferences = builder.finish();
+    segmentation.timings.preferences = t.elapsed().as_secs_f64();
+
+    // Steps 8–9: linkage and size filter.
+    let t = Instant::now();
+    let clustering = clustering_params.cluster(&preferences);
+    drop(preferences);
+    segmentation.timings.clustering = t.elapsed().as_secs_f64();
+
+    let t = Instant::now();
+    segmentation.clusters = cluster_models(points, &clustering);
+    segmentation.timings.cluster_fit = t.elapsed().as_secs_f64();
+    segmentation.clusters_before_filter = clustering.clusters_before_filter;
+    segmentation.labels = clustering.labels;
+    Ok(())
+}
+
+/// The 8-point F of each cluster of `clustering`, by label.
+fn cluster_models(points: &Correspondences, clustering: &Clustering) -> Vec<ClusterModel> {
+    let mut members: Vec<Vec<usize>> = vec![Vec::new(); clustering.clusters_after_filter];
+    for (i, &label) in clustering.labels.iter().enumerate() {
+        if let Ok(label) = usize::try_from(label) {
+            members[label].push(i);
+        }
+    }
+    members
+        .iter()
+        .enumerate()
+        .map(|(label, idx)| ClusterModel {
+            label: label as i32,
+            size: idx.len(),
+            f: fit_cluster(points, idx),
+        })
+        .collect()
+}
+
+/// Hartley-normalised 8-point F of the points `indices` (None with fewer
+/// than 8 points or a degenerate configuration).
+pub fn fit_cluster(points: &Correspondences, indices: &[usize]) -> Option<Matrix3<f64>> {
+    if indices.len() < geometry::MIN_POINTS {
+        return None;
+    }
+    eight_point_normalized(&points.subset(indices).ok()?).ok()
+}
