@@ -7,7 +7,7 @@ pub mod dataset;
 pub mod evaluate;
 pub mod experiment;
 pub mod focal_file;
-pub mod metrics;
+pub use metrics;
 pub mod output;
 pub mod pipeline;
 pub mod plots;

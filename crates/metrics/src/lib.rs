@@ -1,3 +1,4 @@
+#![warn(missing_docs)]
 //! Per-scene evaluation metrics of a segmentation (method.md, "Metrics").
 //!
 //! Label conventions follow the evaluation protocol:
@@ -12,7 +13,7 @@
 //! matchings are broken exactly as the reference evaluation breaks them.
 //!
 //! ```
-//! use bench::metrics::ClusteringMetrics;
+//! use metrics::ClusteringMetrics;
 //!
 //! let gt = [1, 1, 1, 2, 2, 2, 0];
 //! let pred = [7, 7, 7, 3, 3, -1, -1];
@@ -90,7 +91,7 @@ impl ClusteringMetrics {
     /// [`MetricsError`] when the lengths differ or a label is out of range.
     ///
     /// ```
-    /// use bench::metrics::ClusteringMetrics;
+    /// use metrics::ClusteringMetrics;
     ///
     /// // The same partition under other ids is a perfect segmentation.
     /// let m = ClusteringMetrics::compute(&[5, 5, 9, 9, -1], &[1, 1, 2, 2, 0]).unwrap();
@@ -126,7 +127,7 @@ impl ClusteringMetrics {
 /// [`MetricsError`] when the lengths differ or a label is out of range.
 ///
 /// ```
-/// use bench::metrics::misclassification_error;
+/// use metrics::misclassification_error;
 ///
 /// // Cluster 4 covers motion 1 and motion 2 in part; one point of motion 2 is rejected.
 /// let me = misclassification_error(&[4, 4, 4, 4, -1], &[1, 1, 2, 2, 2]).unwrap();
@@ -150,7 +151,7 @@ pub fn misclassification_error(pred: &[i32], gt: &[i32]) -> Result<f64, MetricsE
 /// [`MetricsError`] when the lengths differ or a label is out of range.
 ///
 /// ```
-/// use bench::metrics::false_negative_rate;
+/// use metrics::false_negative_rate;
 ///
 /// // Cluster 3 is matched to the outliers (id 0), so the motion-1 point in it is missed.
 /// let fnr = false_negative_rate(&[3, 3, 3, 8, 8], &[0, 0, 1, 1, 1]).unwrap();
@@ -172,7 +173,7 @@ pub fn false_negative_rate(pred: &[i32], gt: &[i32]) -> Result<f64, MetricsError
 /// [`MetricsError`] when the lengths differ or a label is out of range.
 ///
 /// ```
-/// use bench::metrics::purity;
+/// use metrics::purity;
 ///
 /// let pur = purity(&[0, 0, 0, 1, -1], &[1, 1, 2, 2, 2]).unwrap();
 /// assert!((pur - 3.0 / 4.0).abs() < 1e-15);
@@ -195,7 +196,7 @@ pub fn purity(pred: &[i32], gt: &[i32]) -> Result<f64, MetricsError> {
 /// [`MetricsError`] when the lengths differ or a label is out of range.
 ///
 /// ```
-/// use bench::metrics::adjusted_rand_index;
+/// use metrics::adjusted_rand_index;
 ///
 /// assert_eq!(adjusted_rand_index(&[0, 0, 1, 1], &[1, 1, 2, 2]).unwrap(), 1.0);
 /// assert_eq!(adjusted_rand_index(&[0, 1, 0, 1], &[1, 1, 2, 2]).unwrap(), -0.5);
@@ -218,7 +219,7 @@ pub fn adjusted_rand_index(pred: &[i32], gt: &[i32]) -> Result<f64, MetricsError
 /// [`MetricsError`] when the lengths differ or a label is out of range.
 ///
 /// ```
-/// use bench::metrics::normalized_mutual_info;
+/// use metrics::normalized_mutual_info;
 ///
 /// assert!((normalized_mutual_info(&[3, 3, 4, 4], &[1, 1, 2, 2]).unwrap() - 1.0).abs() < 1e-15);
 /// assert_eq!(normalized_mutual_info(&[3, 3, 3, 3], &[1, 1, 2, 2]).unwrap(), 0.0);
@@ -243,7 +244,7 @@ pub fn normalized_mutual_info(pred: &[i32], gt: &[i32]) -> Result<f64, MetricsEr
 /// with zero norm or non-finite entries (its distance is not a number).
 ///
 /// ```
-/// use bench::metrics::frob_score;
+/// use metrics::frob_score;
 /// use nalgebra::Matrix3;
 ///
 /// let a = Matrix3::new(0.0, -1.0, 0.5, 1.0, 0.0, -0.2, -0.5, 0.2, 0.0);
