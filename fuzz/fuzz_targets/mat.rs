@@ -3,9 +3,14 @@
 #![no_main]
 
 use datasets::adelaidermf::{parse_scene, LoadOptions};
-use datasets::mat::{parse_mat, write_mat};
+use datasets::mat::parse_mat;
 use libfuzzer_sys::fuzz_target;
 use std::path::Path;
+
+/// The test-support writer, shared with the crate's tests.
+#[path = "../../crates/datasets/tests/common/mat_writer.rs"]
+mod mat_writer;
+use mat_writer::write_mat;
 
 fuzz_target!(|data: &[u8]| {
     if let Ok(file) = parse_mat(data) {

@@ -1,5 +1,5 @@
-//! NumPy `.npy` arrays and `.npz` archives (a zip of `.npy` members), read
-//! and written by this crate, as HOPE-F stores its scenes.
+//! NumPy `.npy` arrays and `.npz` archives (a zip of `.npy` members), as
+//! HOPE-F stores its scenes.
 //!
 //! `.npy` (NumPy enhancement proposal NEP 1, format versions 1.0–3.0):
 //! the magic `\x93NUMPY`, a major and minor version byte, a little-endian
@@ -7,11 +7,20 @@
 //! literal `{'descr': '<f8', 'fortran_order': False, 'shape': (N, 3), }`
 //! padded with spaces and a newline, then the raw data.
 //!
+//! Reading is done by the `npyz` crate (header dict, dtype strings, element
+//! decoding in either byte order). This module adds what `npyz` 0.9 leaves
+//! to its caller for untrusted bytes: the header must lie within the input
+//! (`npyz` allocates the claimed length, up to 4 GiB, before reading it);
+//! the shape's element count must fit in `u64` (`npyz` multiplies the
+//! dimensions unchecked, which panics in debug and fuzz builds); and the
+//! data section must hold exactly `shape` elements (`npyz` reads lazily and
+//! ignores trailing bytes). Writing stays here: [`encode_npy`] pads the
+//! header to 64 bytes as NumPy does (`npyz` pads to 16).
+//!
 //! Supported element types: `f4`, `f8`, `i1`–`i8`, `u1`–`u8`, `b1`, either
 //! byte order. Arrays come back in C (row-major) order whatever their
-//! `fortran_order`. Every size read from a file is checked against the bytes
-//! present: malformed input gives an [`NpzError`], never a panic, and no
-//! allocation larger than the input.
+//! `fortran_order`. Malformed input gives an [`NpzError`], never a panic,
+//! and no allocation larger than the input.
 
 use std::io::{Cursor, Read, Seek, Write};
 
@@ -33,10 +42,12 @@ pub enum NpzError {
     /// The member does not start with the `.npy` magic string.
     #[error("not a .npy array (bad magic string)")]
     BadMagic,
-    /// The header is truncated or is not the dict literal NumPy writes.
+    /// The header is truncated, runs past the data, or is not the dict
+    /// literal NumPy writes (the message is `npyz`'s).
     #[error("bad .npy header: {0}")]
     BadHeader(String),
-    /// The `descr` is not one of the supported element types.
+    /// A well-formed `descr` that is not one of the supported element types
+    /// (a malformed one is a [`NpzError::BadHeader`]).
     #[error("unsupported dtype {0:?} (supported: f4, f8, i1-i8, u1-u8, b1)")]
     UnsupportedDtype(String),
     /// The data section does not hold exactly `shape` elements.
@@ -53,6 +64,10 @@ pub enum NpzError {
         /// Bytes present.
         available: usize,
     },
+    /// An element is not a valid value of its dtype (a `b1` byte other
+    /// than 0 or 1).
+    #[error("bad element data: {0}")]
+    BadData(String),
     /// An integer value does not fit `i64`.
     #[error("integer value {0} does not fit in i64")]
     IntegerRange(u64),
@@ -140,54 +155,6 @@ fn checked_count(shape: &[usize]) -> Option<usize> {
     shape.iter().try_fold(1usize, |acc, &d| acc.checked_mul(d))
 }
 
-/// Element type decoded from a `descr` string.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Kind {
-    Float,
-    Signed,
-    Unsigned,
-    Bool,
-}
-
-#[derive(Debug, Clone, Copy)]
-struct Dtype {
-    kind: Kind,
-    size: usize,
-    big_endian: bool,
-}
-
-fn parse_dtype(descr: &str) -> Result<Dtype, NpzError> {
-    let unsupported = || NpzError::UnsupportedDtype(descr.to_string());
-    let mut chars = descr.chars();
-    let order = chars.next().ok_or_else(unsupported)?;
-    let big_endian = match order {
-        '<' | '|' | '=' => false,
-        '>' => true,
-        _ => return Err(unsupported()),
-    };
-    let kind = match chars.next().ok_or_else(unsupported)? {
-        'f' => Kind::Float,
-        'i' => Kind::Signed,
-        'u' => Kind::Unsigned,
-        'b' => Kind::Bool,
-        _ => return Err(unsupported()),
-    };
-    let size: usize = chars.as_str().parse().map_err(|_| unsupported())?;
-    let ok = match kind {
-        Kind::Float => size == 4 || size == 8,
-        Kind::Signed | Kind::Unsigned => matches!(size, 1 | 2 | 4 | 8),
-        Kind::Bool => size == 1,
-    };
-    if !ok {
-        return Err(unsupported());
-    }
-    Ok(Dtype {
-        kind,
-        size,
-        big_endian,
-    })
-}
-
 /// Parses one `.npy` file held in memory.
 ///
 /// ```
@@ -198,106 +165,155 @@ fn parse_dtype(descr: &str) -> Result<Dtype, NpzError> {
 /// assert!(parse_npy(&bytes[..bytes.len() - 1]).is_err());
 /// ```
 pub fn parse_npy(bytes: &[u8]) -> Result<NpyArray, NpzError> {
+    check_shape_fits(header_text(bytes)?)?;
+    let file = npyz::NpyFile::new(bytes).map_err(|e| header_err(&e))?;
+    let header = file.header().clone();
+    let data = file.into_inner();
+    let dtype = match header.dtype() {
+        npyz::DType::Plain(ty) => ty,
+        other => return Err(NpzError::UnsupportedDtype(other.descr())),
+    };
+    let item_size = supported_size(&dtype)?;
+    let shape = header
+        .shape()
+        .iter()
+        .map(|&d| usize::try_from(d))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|_| header_err(&format!("shape {:?} overflows", header.shape())))?;
+    let count =
+        checked_count(&shape).ok_or_else(|| header_err(&format!("shape {shape:?} overflows")))?;
+    let needed = (count as u64).saturating_mul(item_size as u64);
+    if data.len() as u64 != needed {
+        return Err(NpzError::DataSize {
+            shape,
+            item_size,
+            needed,
+            available: data.len(),
+        });
+    }
+    let order = header.order();
+    let mut values = decode(npyz::NpyFile::with_header(header, data), &dtype)?;
+    if order == npyz::Order::Fortran && shape.len() > 1 {
+        values = fortran_to_c(values, &shape);
+    }
+    Ok(NpyArray {
+        shape,
+        data: values,
+        descr: dtype.to_string(),
+    })
+}
+
+/// A [`NpzError::BadHeader`] with the first line of `message` (`npyz`
+/// quotes the whole header, with a caret, on the following lines).
+fn header_err(message: &dyn std::fmt::Display) -> NpzError {
+    let text = message.to_string();
+    NpzError::BadHeader(text.lines().next().unwrap_or_default().to_string())
+}
+
+/// The header's dict text, after checking the magic string, the version and
+/// that the header lies within `bytes`.
+fn header_text(bytes: &[u8]) -> Result<&[u8], NpzError> {
     if bytes.len() < 8 || &bytes[..6] != NPY_MAGIC {
         return Err(NpzError::BadMagic);
     }
-    let major = bytes[6];
-    let (header_len, header_start): (usize, usize) = match major {
-        1 => {
-            let b = bytes
-                .get(8..10)
-                .ok_or_else(|| header_err("truncated length"))?;
-            (usize::from(u16::from_le_bytes([b[0], b[1]])), 10)
-        }
-        2 | 3 => {
-            let b = bytes
-                .get(8..12)
-                .ok_or_else(|| header_err("truncated length"))?;
-            let len = u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
-            (
-                usize::try_from(len).map_err(|_| header_err("header length"))?,
-                12,
-            )
-        }
+    let (len_bytes, start) = match bytes[6] {
+        1 => (2, 10),
+        2 | 3 => (4, 12),
         v => return Err(header_err(&format!("unsupported format version {v}"))),
     };
-    let header_end = header_start
+    let mut len = [0u8; 4];
+    len[..len_bytes].copy_from_slice(
+        bytes
+            .get(8..start)
+            .ok_or_else(|| header_err(&"truncated header length"))?,
+    );
+    let header_len = u32::from_le_bytes(len) as usize;
+    start
         .checked_add(header_len)
-        .filter(|&end| end <= bytes.len())
+        .and_then(|end| bytes.get(start..end))
         .ok_or_else(|| {
             header_err(&format!(
                 "header of {header_len} bytes runs past the end of the data ({} bytes)",
                 bytes.len()
             ))
-        })?;
-    let header = std::str::from_utf8(&bytes[header_start..header_end])
-        .map_err(|_| header_err("header is not UTF-8"))?;
-    let dict = parse_header_dict(header)?;
-    let dtype = parse_dtype(&dict.descr)?;
-    let count = checked_count(&dict.shape)
-        .ok_or_else(|| header_err(&format!("shape {:?} overflows", dict.shape)))?;
-    let data = &bytes[header_end..];
-    let needed = (count as u64).saturating_mul(dtype.size as u64);
-    if data.len() as u64 != needed {
-        return Err(NpzError::DataSize {
-            shape: dict.shape,
-            item_size: dtype.size,
-            needed,
-            available: data.len(),
-        });
-    }
-    let mut values = decode(data, dtype)?;
-    if dict.fortran_order && dict.shape.len() > 1 {
-        values = fortran_to_c(values, &dict.shape);
-    }
-    Ok(NpyArray {
-        shape: dict.shape,
-        data: values,
-        descr: dict.descr,
-    })
+        })
 }
 
-fn header_err(msg: &str) -> NpzError {
-    NpzError::BadHeader(msg.to_string())
-}
-
-fn decode(data: &[u8], dtype: Dtype) -> Result<NpyData, NpzError> {
-    let n = dtype.size;
-    let word = |chunk: &[u8]| -> u64 {
-        let mut buf = [0u8; 8];
-        if dtype.big_endian {
-            buf[8 - n..].copy_from_slice(chunk);
-            u64::from_be_bytes(buf)
-        } else {
-            buf[..n].copy_from_slice(chunk);
-            u64::from_le_bytes(buf)
-        }
+/// Rejects a header whose `shape` has more elements than fit in `u64`,
+/// before `npyz` multiplies the dimensions unchecked. Parsed with
+/// `py_literal`, the parser `npyz` itself uses; anything this check cannot
+/// read is left for `npyz` to report. Every `shape` entry is checked (a
+/// repeated key is resolved by `npyz`, not here), and zero dimensions are
+/// left out of the product so that no partial product, in either order,
+/// can overflow.
+fn check_shape_fits(header: &[u8]) -> Result<(), NpzError> {
+    use py_literal::Value;
+    let Some(Ok(Value::Dict(entries))) = std::str::from_utf8(header)
+        .ok()
+        .map(|text| text.trim_end().parse::<Value>())
+    else {
+        return Ok(());
     };
-    let chunks = data.chunks_exact(n);
-    Ok(match dtype.kind {
-        Kind::Float if n == 4 => NpyData::Float(
-            chunks
-                .map(|c| f64::from(f32::from_bits(word(c) as u32)))
-                .collect(),
-        ),
-        Kind::Float => NpyData::Float(chunks.map(|c| f64::from_bits(word(c))).collect()),
-        Kind::Signed => {
-            let shift = 64 - 8 * n as u32;
-            NpyData::Int(
-                chunks
-                    .map(|c| ((word(c) << shift) as i64) >> shift)
-                    .collect(),
-            )
+    for (key, value) in &entries {
+        let (Value::String(key), Value::Tuple(dims) | Value::List(dims)) = (key, value) else {
+            continue;
+        };
+        if key != "shape" {
+            continue;
         }
-        Kind::Unsigned => NpyData::Int(
-            chunks
-                .map(|c| {
-                    let v = word(c);
-                    i64::try_from(v).map_err(|_| NpzError::IntegerRange(v))
-                })
+        let fits = dims
+            .iter()
+            .filter_map(|d| match d {
+                Value::Integer(d) => u64::try_from(d).ok().filter(|&d| d != 0),
+                _ => None,
+            })
+            .try_fold(1u64, u64::checked_mul)
+            .is_some();
+        if !fits {
+            return Err(header_err(&format!("shape {value} overflows")));
+        }
+    }
+    Ok(())
+}
+
+/// The item size of a supported element type.
+fn supported_size(dtype: &npyz::TypeStr) -> Result<usize, NpzError> {
+    use npyz::TypeChar::{Bool, Float, Int, Uint};
+    match (dtype.type_char(), dtype.size_field()) {
+        (Float, 4 | 8) | (Int | Uint, 1 | 2 | 4 | 8) | (Bool, 1) => Ok(dtype.size_field() as usize),
+        _ => Err(NpzError::UnsupportedDtype(dtype.to_string())),
+    }
+}
+
+/// Reads all elements with `npyz` (the data length already checked) and
+/// widens them to `f64` or `i64`.
+fn decode(file: npyz::NpyFile<&[u8]>, dtype: &npyz::TypeStr) -> Result<NpyData, NpzError> {
+    use npyz::TypeChar::{Bool, Float, Int, Uint};
+    fn read<T: npyz::Deserialize>(file: npyz::NpyFile<&[u8]>) -> Result<Vec<T>, NpzError> {
+        file.into_vec()
+            .map_err(|e| NpzError::BadData(e.to_string()))
+    }
+    fn ints<T: Into<i64>>(values: Vec<T>) -> NpyData {
+        NpyData::Int(values.into_iter().map(Into::into).collect())
+    }
+    Ok(match (dtype.type_char(), dtype.size_field()) {
+        (Float, 4) => NpyData::Float(read::<f32>(file)?.into_iter().map(f64::from).collect()),
+        (Float, 8) => NpyData::Float(read(file)?),
+        (Int, 1) => ints(read::<i8>(file)?),
+        (Int, 2) => ints(read::<i16>(file)?),
+        (Int, 4) => ints(read::<i32>(file)?),
+        (Int, 8) => ints(read::<i64>(file)?),
+        (Uint, 1) => ints(read::<u8>(file)?),
+        (Uint, 2) => ints(read::<u16>(file)?),
+        (Uint, 4) => ints(read::<u32>(file)?),
+        (Uint, 8) => NpyData::Int(
+            read::<u64>(file)?
+                .into_iter()
+                .map(|v| i64::try_from(v).map_err(|_| NpzError::IntegerRange(v)))
                 .collect::<Result<_, _>>()?,
         ),
-        Kind::Bool => NpyData::Int(chunks.map(|c| i64::from(c[0] != 0)).collect()),
+        (Bool, 1) => ints(read::<bool>(file)?),
+        _ => return Err(NpzError::UnsupportedDtype(dtype.to_string())),
     })
 }
 
@@ -329,134 +345,6 @@ fn fortran_to_c(values: NpyData, shape: &[usize]) -> NpyData {
     match values {
         NpyData::Float(v) => NpyData::Float(reorder(&v, shape)),
         NpyData::Int(v) => NpyData::Int(reorder(&v, shape)),
-    }
-}
-
-struct HeaderDict {
-    descr: String,
-    fortran_order: bool,
-    shape: Vec<usize>,
-}
-
-/// Parses the Python dict literal of a `.npy` header.
-fn parse_header_dict(text: &str) -> Result<HeaderDict, NpzError> {
-    let mut p = Parser {
-        s: text.as_bytes(),
-        i: 0,
-    };
-    p.expect(b'{')?;
-    let (mut descr, mut fortran, mut shape) = (None, None, None);
-    loop {
-        p.skip_ws();
-        if p.eat(b'}') {
-            break;
-        }
-        let key = p.string()?;
-        p.expect(b':')?;
-        match key.as_str() {
-            "descr" => descr = Some(p.string()?),
-            "fortran_order" => fortran = Some(p.boolean()?),
-            "shape" => shape = Some(p.tuple()?),
-            other => return Err(header_err(&format!("unexpected key {other:?}"))),
-        }
-        p.skip_ws();
-        if !p.eat(b',') {
-            p.expect(b'}')?;
-            break;
-        }
-    }
-    Ok(HeaderDict {
-        descr: descr.ok_or_else(|| header_err("missing 'descr'"))?,
-        fortran_order: fortran.ok_or_else(|| header_err("missing 'fortran_order'"))?,
-        shape: shape.ok_or_else(|| header_err("missing 'shape'"))?,
-    })
-}
-
-struct Parser<'a> {
-    s: &'a [u8],
-    i: usize,
-}
-
-impl Parser<'_> {
-    fn skip_ws(&mut self) {
-        while self.i < self.s.len() && self.s[self.i].is_ascii_whitespace() {
-            self.i += 1;
-        }
-    }
-
-    fn eat(&mut self, c: u8) -> bool {
-        self.skip_ws();
-        if self.s.get(self.i) == Some(&c) {
-            self.i += 1;
-            true
-        } else {
-            false
-        }
-    }
-
-    fn expect(&mut self, c: u8) -> Result<(), NpzError> {
-        if self.eat(c) {
-            Ok(())
-        } else {
-            Err(header_err(&format!(
-                "expected {:?} at byte {}",
-                c as char, self.i
-            )))
-        }
-    }
-
-    fn string(&mut self) -> Result<String, NpzError> {
-        self.skip_ws();
-        let quote = match self.s.get(self.i) {
-            Some(&q @ (b'\'' | b'"')) => q,
-            _ => return Err(header_err(&format!("expected a string at byte {}", self.i))),
-        };
-        let start = self.i + 1;
-        let len = self.s[start..]
-            .iter()
-            .position(|&c| c == quote)
-            .ok_or_else(|| header_err("unterminated string"))?;
-        self.i = start + len + 1;
-        Ok(String::from_utf8_lossy(&self.s[start..start + len]).into_owned())
-    }
-
-    fn boolean(&mut self) -> Result<bool, NpzError> {
-        self.skip_ws();
-        let rest = &self.s[self.i..];
-        if rest.starts_with(b"True") {
-            self.i += 4;
-            Ok(true)
-        } else if rest.starts_with(b"False") {
-            self.i += 5;
-            Ok(false)
-        } else {
-            Err(header_err("'fortran_order' is not True or False"))
-        }
-    }
-
-    fn tuple(&mut self) -> Result<Vec<usize>, NpzError> {
-        self.expect(b'(')?;
-        let mut dims = Vec::new();
-        loop {
-            if self.eat(b')') {
-                break;
-            }
-            self.skip_ws();
-            let start = self.i;
-            while self.i < self.s.len() && self.s[self.i].is_ascii_digit() {
-                self.i += 1;
-            }
-            let digits = std::str::from_utf8(&self.s[start..self.i]).unwrap_or("");
-            let d: usize = digits
-                .parse()
-                .map_err(|_| header_err(&format!("bad dimension at byte {start}")))?;
-            dims.push(d);
-            if !self.eat(b',') {
-                self.expect(b')')?;
-                break;
-            }
-        }
-        Ok(dims)
     }
 }
 
@@ -696,5 +584,151 @@ mod tests {
             assert_eq!((10 + header_len) % 64, 0);
             assert_eq!(parse_npy(&bytes).unwrap(), a);
         }
+    }
+
+    #[test]
+    fn header_length_past_the_end_is_an_error_without_allocating_it() {
+        // Version 2.0 claims a 4 GiB header in a 16-byte input.
+        let mut bytes = NPY_MAGIC.to_vec();
+        bytes.extend_from_slice(&[2, 0]);
+        bytes.extend_from_slice(&u32::MAX.to_le_bytes());
+        bytes.extend_from_slice(b"{'de");
+        let err = parse_npy(&bytes).unwrap_err();
+        assert_eq!(
+            err,
+            NpzError::BadHeader(
+                "header of 4294967295 bytes runs past the end of the data (16 bytes)".into()
+            )
+        );
+        bytes[6] = 4;
+        assert_eq!(
+            parse_npy(&bytes),
+            Err(NpzError::BadHeader("unsupported format version 4".into()))
+        );
+    }
+
+    #[test]
+    fn shapes_whose_count_overflows_are_errors_in_any_order() {
+        // npyz multiplies left to right for the count and right to left for
+        // the C strides: both orders, and a zero that hides the overflow
+        // from a left-to-right product, and a repeated key.
+        for shape in [
+            "(99999999999, 99999999999, 99999999999)",
+            "(0, 99999999999, 99999999999)",
+            "(99999999999, 99999999999, 0)",
+            "[4294967296, 4294967296]",
+        ] {
+            let header =
+                format!("{{'descr': '<f8', 'fortran_order': False, 'shape': {shape}, }}\n");
+            let err = parse_npy(&npy_with_header(&header, &[])).unwrap_err();
+            assert!(
+                matches!(&err, NpzError::BadHeader(m) if m.contains("overflows")),
+                "{shape}: {err}"
+            );
+        }
+        let repeated = "{'shape': (1,), 'descr': '<f8', 'fortran_order': False, 'shape': (4294967296, 4294967296), }\n";
+        assert!(matches!(
+            parse_npy(&npy_with_header(repeated, &[])),
+            Err(NpzError::BadHeader(_))
+        ));
+        // A zero-sized array with moderate dimensions is fine.
+        let empty = "{'descr': '<f8', 'fortran_order': False, 'shape': (0, 3), }\n";
+        let a = parse_npy(&npy_with_header(empty, &[])).unwrap();
+        assert_eq!((a.shape, a.data), (vec![0, 3], NpyData::Float(vec![])));
+    }
+
+    #[test]
+    fn deeply_nested_header_is_an_error_not_a_stack_overflow() {
+        // 60 000 open parentheses fill a version 1.0 header; the parser
+        // stops at its depth limit. Run on a 2 MiB stack, a test thread's.
+        let header = format!(
+            "{{'descr': '<f8', 'fortran_order': False, 'shape': {}",
+            "(".repeat(60_000)
+        );
+        let bytes = npy_with_header(&header, &[]);
+        let result = std::thread::Builder::new()
+            .stack_size(2 << 20)
+            .spawn(move || parse_npy(&bytes))
+            .unwrap()
+            .join()
+            .unwrap();
+        assert!(matches!(result, Err(NpzError::BadHeader(m)) if m.starts_with("could not parse")));
+    }
+
+    #[test]
+    fn booleans_are_zero_or_one() {
+        let header = "{'descr': '|b1', 'fortran_order': False, 'shape': (3,), }\n";
+        assert_eq!(
+            parse_npy(&npy_with_header(header, &[0, 1, 1]))
+                .unwrap()
+                .data,
+            NpyData::Int(vec![0, 1, 1])
+        );
+        assert!(matches!(
+            parse_npy(&npy_with_header(header, &[0, 2, 1])),
+            Err(NpzError::BadData(_))
+        ));
+    }
+
+    #[test]
+    fn version_3_and_fortran_integers_are_read() {
+        // Version 3.0 (UTF-8 header, u32 length), a 2 x 2 int16 array
+        // [[1, -2], [3, 4]] stored column-major and big-endian.
+        let header = "{'descr': '>i2', 'fortran_order': True, 'shape': (2, 2), }\n";
+        let mut bytes = NPY_MAGIC.to_vec();
+        bytes.extend_from_slice(&[3, 0]);
+        bytes.extend_from_slice(&(header.len() as u32).to_le_bytes());
+        bytes.extend_from_slice(header.as_bytes());
+        for v in [1i16, 3, -2, 4] {
+            bytes.extend_from_slice(&v.to_be_bytes());
+        }
+        let a = parse_npy(&bytes).unwrap();
+        assert_eq!(a.descr, ">i2");
+        assert_eq!(a.data, NpyData::Int(vec![1, -2, 3, 4]));
+    }
+
+    #[test]
+    fn trailing_bytes_and_record_dtypes_are_rejected() {
+        let header = "{'descr': '<i4', 'fortran_order': False, 'shape': (1,), }\n";
+        assert!(matches!(
+            parse_npy(&npy_with_header(header, &[0; 5])),
+            Err(NpzError::DataSize {
+                needed: 4,
+                available: 5,
+                ..
+            })
+        ));
+        let record =
+            "{'descr': [('a', '<i4'), ('b', '<f8')], 'fortran_order': False, 'shape': (1,), }\n";
+        assert!(matches!(
+            parse_npy(&npy_with_header(record, &[0; 12])),
+            Err(NpzError::UnsupportedDtype(_))
+        ));
+        let text = "{'descr': '<U3', 'fortran_order': False, 'shape': (1,), }\n";
+        assert_eq!(
+            parse_npy(&npy_with_header(text, &[0; 12])),
+            Err(NpzError::UnsupportedDtype("<U3".into()))
+        );
+    }
+
+    #[test]
+    fn spellings_numpy_never_writes() {
+        let eight = 1.5f64.to_le_bytes();
+        for descr in ["=f8", "|f8"] {
+            let header =
+                format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': (1,), }}\n");
+            assert!(
+                matches!(
+                    parse_npy(&npy_with_header(&header, &eight)),
+                    Err(NpzError::BadHeader(_))
+                ),
+                "{descr}"
+            );
+        }
+        let header = "{'descr': '<f8', 'fortran_order': False, 'shape': (1,), 'x': 1, }\n";
+        let mut bytes = npy_with_header(header, &eight);
+        assert_eq!(parse_npy(&bytes).unwrap().data, NpyData::Float(vec![1.5]));
+        bytes[7] = 1; // format version 1.1
+        assert!(matches!(parse_npy(&bytes), Err(NpzError::BadHeader(_))));
     }
 }

@@ -3,10 +3,11 @@
 
 mod common;
 
+use common::mat_writer::write_mat;
 use datasets::adelaidermf::{
     load_scene, parse_scene, AdelaideRmf, LoadOptions, FUNDAMENTAL_SCENES,
 };
-use datasets::mat::{parse_mat, write_mat, MatValues};
+use datasets::mat::{parse_mat, MatValues};
 use datasets::DatasetError;
 use std::path::Path;
 
@@ -221,6 +222,16 @@ fn edited(edit: impl FnOnce(&mut datasets::mat::MatFile)) -> Result<datasets::Sc
         Path::new("book.mat"),
         LoadOptions::default(),
     )
+}
+
+#[test]
+fn test_writer_round_trips_every_numeric_variable() {
+    for name in ["book", "dinobooks"] {
+        let bytes = std::fs::read(common::adelaidermf_dir().join(format!("{name}.mat"))).unwrap();
+        let mat = parse_mat(&bytes).unwrap();
+        assert_eq!(mat.variables.len(), 5, "{name}");
+        assert_eq!(parse_mat(&write_mat(&mat)).unwrap(), mat, "{name}");
+    }
 }
 
 #[test]

@@ -5,9 +5,10 @@
 
 mod common;
 
+use common::mat_writer::write_mat;
 use datasets::adelaidermf::{parse_scene, LoadOptions};
 use datasets::hopef::{parse_camera, parse_features, CAMERA_FILE, FEATURES_FILE};
-use datasets::mat::{parse_mat, write_mat};
+use datasets::mat::parse_mat;
 use datasets::npz::parse_npy;
 use proptest::prelude::*;
 use std::path::Path;

@@ -2,6 +2,8 @@
 //! test with where to get it; nothing is skipped silently.
 #![allow(dead_code)]
 
+pub mod mat_writer;
+
 use datasets::{data_root_env, resolve_data_root, workspace_datasets_dir, DataRootSources};
 use std::path::PathBuf;
 
