@@ -3,9 +3,9 @@
 //! * [`Correspondences`] and [`FundamentalMatrix`]: checked input types.
 //! * [`sampson`]: the Sampson (Eq. 23) and symmetric epipolar (Eq. 24)
 //!   distances, single-point and batch forms, and the FROB distance (Eq. 45).
-//! * [`eight_point`]: the 8-point algorithm (step 2) in three variants,
-//!   plain, Hartley-normalised and weighted, each followed by rank-2
-//!   enforcement.
+//! * [`eight_point`]: the 8-point algorithm (step 2) in pixel (plain) and
+//!   Hartley-normalised coordinates, each unweighted or weighted, followed by
+//!   rank-2 enforcement.
 //! * [`irls`]: IRLS-Tukey refinement of a hypothesis (step 3, Section 5.2.1;
 //!   Eqs. 33–34).
 //!
@@ -23,8 +23,8 @@ pub mod sampson;
 pub mod types;
 
 pub use eight_point::{
-    eight_point_normalized, eight_point_plain, eight_point_weighted, enforce_rank2, MIN_POINTS,
-    RANK_TOLERANCE,
+    eight_point_normalized, eight_point_plain, eight_point_weighted, eight_point_weighted_plain,
+    enforce_rank2, MIN_POINTS, RANK_TOLERANCE,
 };
 pub use error::GeometryError;
 pub use irls::{
