@@ -19,6 +19,7 @@ pub mod eight_point;
 pub mod error;
 pub mod irls;
 mod linalg;
+mod mad;
 pub mod sampson;
 pub mod types;
 
