@@ -8,6 +8,9 @@
 //!   rank-2 enforcement.
 //! * [`irls`]: IRLS-Tukey refinement of a hypothesis (step 3, Section 5.2.1;
 //!   Eqs. 33–34).
+//! * [`polish`]: the reference code's nonlinear polish of a sample's F
+//!   (PoseLib's `refine_fundamental`: Levenberg–Marquardt on the
+//!   Cauchy-robust Sampson error).
 //!
 //! Convention everywhere: a match (x1 ↔ x2) satisfies `x2ᵀ F x1 = 0`, with
 //! homogeneous pixel coordinates `x = (x, y, 1)`, `F` stored row-major in
@@ -20,6 +23,7 @@ pub mod error;
 pub mod irls;
 mod linalg;
 mod mad;
+pub mod polish;
 pub mod sampson;
 pub mod types;
 
@@ -32,6 +36,7 @@ pub use irls::{
     median_absolute_deviation, median_in_place, refine_irls_tukey, tukey_weight, IrlsParams,
     IrlsSummary, IrlsWorkspace, RefinedModel, MAD_TO_SIGMA,
 };
+pub use polish::{polish_fundamental, Polished, POLISH_LOSS_SCALE_PX, POLISH_MAX_ITERS};
 pub use sampson::{
     frob_distance, sampson_distance, sampson_distance_signed, sampson_distance_squared,
     sampson_distances_squared, sampson_residuals_signed, symmetric_epipolar_distance,
