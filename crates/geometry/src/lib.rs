@@ -7,7 +7,7 @@
 //!   Hartley-normalised coordinates, each unweighted or weighted, followed by
 //!   rank-2 enforcement.
 //! * [`irls`]: IRLS-Tukey refinement of a hypothesis (step 3, Section 5.2.1;
-//!   Eqs. 33–34).
+//!   Eqs. 33–34), with the reference code's variants as switches.
 //! * [`polish`]: the reference code's nonlinear polish of a sample's F
 //!   (PoseLib's `refine_fundamental`: Levenberg–Marquardt on the
 //!   Cauchy-robust Sampson error).
@@ -33,8 +33,8 @@ pub use eight_point::{
 };
 pub use error::GeometryError;
 pub use irls::{
-    median_absolute_deviation, median_in_place, refine_irls_tukey, tukey_weight, IrlsParams,
-    IrlsSummary, IrlsWorkspace, RefinedModel, MAD_TO_SIGMA,
+    median_absolute_deviation, median_in_place, refine_irls_tukey, tukey_weight, IrlsFit,
+    IrlsParams, IrlsSummary, IrlsWorkspace, RefinedModel, MAD_TO_SIGMA,
 };
 pub use polish::{polish_fundamental, Polished, POLISH_LOSS_SCALE_PX, POLISH_MAX_ITERS};
 pub use sampson::{
