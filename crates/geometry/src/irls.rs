@@ -43,8 +43,8 @@
 //!   Tukey weights; fewer than 8 positive weights or a null space of
 //!   dimension > 1 ends the refinement with that error;
 //! * [`IrlsParams::sigma_offset_px`] = 1e-12: step 2 uses
-//!   `σ = 1.4826 · MAD + 10⁻¹²` px, so that the residuals of an exact fit
-//!   (rounding noise, ~10⁻¹³ px) all get a positive weight;
+//!   `σ = 1.4826 · MAD + 10⁻¹²` px, so that residuals at the rounding
+//!   level of an exact fit (below ~10⁻¹² px) keep positive weights;
 //! * [`IrlsParams::polish`] = true: before step 1, `F` is polished on the
 //!   sample by [`crate::polish_fundamental`] (PoseLib's
 //!   `refine_fundamental`: Levenberg–Marquardt on the Cauchy-robust Sampson
@@ -122,8 +122,8 @@ pub struct IrlsParams {
     pub unit_weight_fallback: bool,
     /// Added to the robust scale of step 2, in px:
     /// `σ = 1.4826 · MAD + sigma_offset_px`. Default 0 (the text); the
-    /// reference code adds 1e-12, which keeps every weight of an exact fit
-    /// positive.
+    /// reference code adds 1e-12, which keeps the weights of residuals at
+    /// the rounding level of an exact fit (below ~1e-12 px) positive.
     pub sigma_offset_px: f64,
     /// Polish the starting `F` on the sample before the first iteration by
     /// [`crate::polish_fundamental`] (PoseLib's `refine_fundamental`, as
