@@ -1,7 +1,8 @@
 //! Criterion benchmarks of the geometry hot paths:
 //! * the Sampson batch over N = 2000 matches (preference matrix, Eq. 38),
 //!   reported as point-evaluations per second;
-//! * IRLS-Tukey refinement from an 8-point sample at N = 300 (step 3);
+//! * IRLS-Tukey refinement from an 8-point sample at N = 300 (step 3), the
+//!   text's variant and the reference code's (plain refit, polish);
 //! * the three 8-point variants on a minimal sample (step 2).
 //!
 //! Run with `cargo bench -p geometry --bench geometry`.
@@ -75,6 +76,19 @@ fn irls(c: &mut Criterion) {
         b.iter(|| {
             k = (k + 1) % samples.len();
             workspace.run(black_box(&points), &samples[k], None, &params)
+        })
+    });
+    let reference = IrlsParams::reference_code();
+    let mut k = 0;
+    group.bench_function("workspace_reference_n300", |b| {
+        b.iter(|| {
+            k = (k + 1) % samples.len();
+            workspace.run(
+                black_box(&points),
+                &samples[k],
+                Some(&initials[k]),
+                &reference,
+            )
         })
     });
     let mut k = 0;

@@ -15,7 +15,7 @@
 //! zeroing the smallest singular value of `F`, the constraint `det F = 0`
 //! that every fundamental matrix satisfies.
 //!
-//! Three variants:
+//! Four variants, two coordinate frames × unweighted/weighted:
 //! * [`eight_point_plain`]: the system in the given (principal-point-centred)
 //!   pixel coordinates, as the reference implementation solves it. Its
 //!   columns differ in scale by ~`10⁵`, so it is solved by an incremental
@@ -23,6 +23,9 @@
 //!   factor, never by the normal matrix (whose condition number would be the
 //!   square). With exactly 8 matches the solution is the null vector of `X`,
 //!   which the normalised system gives more accurately.
+//! * [`eight_point_weighted_plain`]: the same with weights, minimising
+//!   `fᵀ Xᵀ W X f` in pixel coordinates (the reference code's IRLS refit):
+//!   the rows enter the QR scaled by `√w_i`.
 //! * [`eight_point_normalized`]: Hartley normalisation first (per image,
 //!   centroid to the origin, mean distance to it `√2`: `x̂ = T x`), solve for
 //!   `F̂`, enforce rank 2, denormalise `F = T2ᵀ F̂ T1`. The normalised system is
@@ -34,7 +37,11 @@
 //!   weighted centroids and mean distances, so unit weights reproduce
 //!   [`eight_point_normalized`] and zero weights remove points entirely.
 //!
-//! All three return `F` with unit Frobenius norm and the sign that makes its
+//! The two frames minimise different algebraic errors (the normalised one
+//! weighs the nine monomials of a match comparably; in pixels the quadratic
+//! ones dominate by ~`10⁵`), so on noisy data they give different `F`.
+//!
+//! All four return `F` with unit Frobenius norm and the sign that makes its
 //! entry of largest magnitude positive. A system whose null space has more
 //! than one dimension (duplicate points, all points of one image collinear,
 //! fewer than 8 distinct matches) is [`GeometryError::Degenerate`]: the
@@ -127,7 +134,7 @@ fn canonical_scale(f: Matrix3<f64>) -> Matrix3<f64> {
 }
 
 /// Final checks and canonical form shared by the estimators.
-fn finish(f: Matrix3<f64>) -> Result<Matrix3<f64>, GeometryError> {
+pub(crate) fn finish(f: Matrix3<f64>) -> Result<Matrix3<f64>, GeometryError> {
     let norm = f.norm();
     if !norm.is_finite() {
         return Err(GeometryError::Overflow("fundamental matrix"));
@@ -175,19 +182,81 @@ pub fn eight_point_plain(points: &Correspondences) -> Result<Matrix3<f64>, Geome
             needed: MIN_POINTS,
         });
     }
-    if n == MIN_POINTS {
+    fit_plain(points, (0..n).map(|i| (i, 1.0)))
+}
+
+/// Weighted plain 8-point (step 3d as the reference code runs it):
+/// minimises `fᵀ Xᵀ W X f = ‖W^½ X f‖²` subject to `‖f‖ = 1`,
+/// `W = diag(weights)`, in the given (principal-point-centred) pixel
+/// coordinates, without Hartley normalisation; then rank 2 and unit
+/// Frobenius norm. Unit weights give [`eight_point_plain`]; a zero weight
+/// removes a match; multiplying all weights by a constant does not change
+/// the minimiser.
+///
+/// Numerics as [`eight_point_plain`], with the rows scaled by `√w_i` (the
+/// reference code takes the SVD of the normal matrix `XᵀWX` itself, which
+/// squares the condition number; the minimiser is the same). With exactly 8
+/// positive weights it is the null vector of those 8 rows, whatever the
+/// weights.
+///
+/// Errors: as [`eight_point_weighted`] (weight count, invalid weight,
+/// [`GeometryError::TooFewWeightedPoints`]), then as [`eight_point_plain`].
+///
+/// ```
+/// use geometry::{eight_point_plain, eight_point_weighted_plain, frob_distance, Correspondences};
+/// // Sideways translation with varying depth, plus one gross outlier.
+/// let p1: Vec<[f64; 2]> = (0..10).map(|i| [(i * 37 % 11) as f64 * 20.0 - 100.0, (i * i % 7) as f64 * 15.0 - 50.0]).collect();
+/// let mut p2: Vec<[f64; 2]> = p1.iter().enumerate().map(|(i, p)| [p[0] + 4000.0 / (4.0 + i as f64), p[1]]).collect();
+/// p2[9] = [300.0, -200.0];
+/// let all = Correspondences::new(&p1, &p2).unwrap();
+/// let clean = Correspondences::new(&p1[..9], &p2[..9]).unwrap();
+/// let mut w = vec![2.0; 10];
+/// w[9] = 0.0;
+/// let fw = eight_point_weighted_plain(&all, &w).unwrap();
+/// assert!(frob_distance(&fw, &eight_point_plain(&clean).unwrap()) < 1e-12);
+/// ```
+pub fn eight_point_weighted_plain(
+    points: &Correspondences,
+    weights: &[f64],
+) -> Result<Matrix3<f64>, GeometryError> {
+    check_weights(points, weights)?;
+    fit_plain(points, weights.iter().copied().enumerate())
+}
+
+/// The weighted plain solve behind [`eight_point_plain`],
+/// [`eight_point_weighted_plain`] and the IRLS step's plain refit: `items`
+/// yields `(index, weight)` pairs with valid indices and finite weights
+/// `>= 0`; it is iterated twice.
+pub(crate) fn fit_plain<I>(
+    points: &Correspondences,
+    items: I,
+) -> Result<Matrix3<f64>, GeometryError>
+where
+    I: Iterator<Item = (usize, f64)> + Clone,
+{
+    let positive = items.clone().filter(|&(_, w)| w > 0.0).count();
+    if positive < MIN_POINTS {
+        return Err(GeometryError::TooFewWeightedPoints {
+            got: positive,
+            needed: MIN_POINTS,
+        });
+    }
+    if positive == MIN_POINTS {
         // Eight matches in general position leave a one-dimensional null
-        // space: the minimiser is that null vector in any coordinates, so it
-        // is computed from the well-conditioned normalised system; rank 2 is
-        // then enforced in the given coordinates, as the plain variant does.
-        let solution = solve_normalized(points, (0..n).map(|i| (i, 1.0)))?;
+        // space: the minimiser is that null vector in any coordinates and for
+        // any positive weights, so it is computed from the well-conditioned
+        // normalised system; rank 2 is then enforced in the given
+        // coordinates, as the plain variant does.
+        let solution = solve_normalized(points, items)?;
         let f = solution.t2.transpose() * solution.f_hat * solution.t1;
         return finish(enforce_rank2(f / f.norm()));
     }
     let (x1, y1, x2, y2) = points.columns();
     let mut qr = GivensQr9::default();
-    for i in 0..n {
-        qr.push(design_row(x1[i], y1[i], x2[i], y2[i]));
+    for (i, w) in items.filter(|&(_, w)| w > 0.0) {
+        // √1 = 1 exactly: unit weights fold the rows unchanged.
+        let scale = w.sqrt();
+        qr.push(design_row(x1[i], y1[i], x2[i], y2[i]).map(|v| v * scale));
     }
     let r = qr.r;
     if !r.iter().flatten().all(|v| v.is_finite()) {
@@ -315,6 +384,13 @@ pub fn eight_point_weighted(
     points: &Correspondences,
     weights: &[f64],
 ) -> Result<Matrix3<f64>, GeometryError> {
+    check_weights(points, weights)?;
+    fit_normalized(points, weights.iter().copied().enumerate())
+}
+
+/// The checks of the weighted estimators: one weight per match, every
+/// weight finite and `>= 0`, at least 8 matches.
+fn check_weights(points: &Correspondences, weights: &[f64]) -> Result<(), GeometryError> {
     let n = points.len();
     if weights.len() != n {
         return Err(GeometryError::WeightCountMismatch {
@@ -335,7 +411,7 @@ pub fn eight_point_weighted(
             needed: MIN_POINTS,
         });
     }
-    fit_normalized(points, weights.iter().copied().enumerate())
+    Ok(())
 }
 
 /// The weighted, normalised solve behind [`eight_point_normalized`],

@@ -29,8 +29,34 @@
 //! happens on the first iteration from an exact 8-point fit, whose residuals
 //! are rounding noise: with 8 matches the solution does not depend on the
 //! (positive) weights anyway.
+//!
+//! # The reference code's variants
+//!
+//! The published code (`refine_F_nonlinear` in its `geometry.py`) differs in
+//! four places; each is a field of [`IrlsParams`] whose default is the
+//! text's behaviour above:
+//! * [`IrlsParams::fit`] = [`IrlsFit::Plain`]: step 4 minimises `fᵀ Xᵀ W X f`
+//!   in the given (principal-point-centred) pixel coordinates, without
+//!   Hartley normalisation ([`crate::eight_point_weighted_plain`]), then
+//!   rank 2;
+//! * [`IrlsParams::unit_weight_fallback`] = false: step 4 always uses the
+//!   Tukey weights; fewer than 8 positive weights or a null space of
+//!   dimension > 1 ends the refinement with that error;
+//! * [`IrlsParams::sigma_offset_px`] = 1e-12: step 2 uses
+//!   `σ = 1.4826 · MAD + 10⁻¹²` px, so that residuals at the rounding
+//!   level of an exact fit (below ~10⁻¹² px) keep positive weights;
+//! * [`IrlsParams::polish`] = true: before step 1, `F` is polished on the
+//!   sample by [`crate::polish_fundamental`] (PoseLib's
+//!   `refine_fundamental`: Levenberg–Marquardt on the Cauchy-robust Sampson
+//!   error, rank 2 by construction).
+//!
+//! [`IrlsParams::reference_code`] sets all four; the reference also starts
+//! from the plain 8-point of the sample ([`crate::eight_point_plain`]).
 
-use crate::eight_point::{fit_normalized, MIN_POINTS};
+use crate::eight_point::{fit_normalized, fit_plain, MIN_POINTS};
+use crate::mad::{mad_below, mad_by_keys};
+pub use crate::mad::{median_absolute_deviation, median_in_place};
+use crate::polish::polish_at;
 use crate::sampson::sampson_residuals_signed_at;
 use crate::{sampson_residuals_signed, Correspondences, GeometryError};
 use nalgebra::Matrix3;
@@ -40,8 +66,25 @@ use serde::{Deserialize, Serialize};
 /// (Eq. 34): `σ ≈ 1.4826 · MAD`.
 pub const MAD_TO_SIGMA: f64 = 1.4826;
 
+/// How step 4 of the IRLS iteration refits `F` from the weighted inliers.
+/// Written `"normalized"` or `"plain"` in configuration files.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum IrlsFit {
+    /// The weighted 8-point on Hartley-normalised coordinates (weighted
+    /// centroids and mean distances, [`crate::eight_point_weighted`]): the
+    /// thesis text's refit. The default.
+    #[default]
+    Normalized,
+    /// The weighted 8-point in the given (principal-point-centred) pixel
+    /// coordinates, no normalisation ([`crate::eight_point_weighted_plain`]),
+    /// then rank 2: the reference code's refit.
+    Plain,
+}
+
 /// Parameters of the IRLS-Tukey refinement. Missing fields take the
-/// defaults of thesis Table 1 when deserialised.
+/// defaults of thesis Table 1 (and the text's variant, see the [module
+/// documentation](self)) when deserialised.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
 pub struct IrlsParams {
@@ -60,6 +103,32 @@ pub struct IrlsParams {
     /// Convergence threshold on `|old Δ new| / |old ∪ new|` of the inlier
     /// sets. Default 0.01 (1 %).
     pub min_change: f64,
+    /// The refit of step 4 (`irls_fit` in the configs, accepted as an
+    /// alias): `"normalized"` (default, the text) or `"plain"` (the
+    /// reference code; also the start from the sample when no initial `F`
+    /// is given).
+    #[serde(alias = "irls_fit")]
+    pub fit: IrlsFit,
+    /// When the Tukey weights leave fewer than 8 positive weights, or the
+    /// weighted system has a null space of dimension > 1, refit with unit
+    /// weights on the current inliers. Default true (the rule this crate
+    /// adds to the text). False is the reference code's rule: the weighted
+    /// system is solved as it is, and a degenerate one fails the hypothesis
+    /// with [`GeometryError::TooFewWeightedPoints`] or
+    /// [`GeometryError::Degenerate`]. (The reference takes LAPACK's smallest
+    /// singular vector of the singular `XᵀWX`, an arbitrary member of a
+    /// solution space of dimension ≥ 2 chosen by rounding; it fits at most
+    /// 7 weighted points and is not reproducible, so it is dropped here.)
+    pub unit_weight_fallback: bool,
+    /// Added to the robust scale of step 2, in px:
+    /// `σ = 1.4826 · MAD + sigma_offset_px`. Default 0 (the text); the
+    /// reference code adds 1e-12, which keeps the weights of residuals at
+    /// the rounding level of an exact fit (below ~1e-12 px) positive.
+    pub sigma_offset_px: f64,
+    /// Polish the starting `F` on the sample before the first iteration by
+    /// [`crate::polish_fundamental`] (PoseLib's `refine_fundamental`, as
+    /// the reference code does). Default false (the text).
+    pub polish: bool,
 }
 
 impl Default for IrlsParams {
@@ -69,13 +138,32 @@ impl Default for IrlsParams {
             max_iters: 5,
             tukey_c: 4.685,
             min_change: 0.01,
+            fit: IrlsFit::Normalized,
+            unit_weight_fallback: true,
+            sigma_offset_px: 0.0,
+            polish: false,
         }
     }
 }
 
 impl IrlsParams {
+    /// The reference code's variant of the refinement (see the [module
+    /// documentation](self)): `fit = Plain`, `unit_weight_fallback = false`,
+    /// `sigma_offset_px = 1e-12`, `polish = true`, the other fields at their
+    /// defaults.
+    pub fn reference_code() -> Self {
+        Self {
+            fit: IrlsFit::Plain,
+            unit_weight_fallback: false,
+            sigma_offset_px: 1e-12,
+            polish: true,
+            ..Self::default()
+        }
+    }
+
     /// Checks the ranges: `thr_px` finite and `> 0`, `max_iters ≥ 1`,
-    /// `tukey_c` finite and `> 0`, `min_change` finite and `≥ 0`.
+    /// `tukey_c` finite and `> 0`, `min_change` and `sigma_offset_px` finite
+    /// and `≥ 0`.
     pub fn validate(&self) -> Result<(), GeometryError> {
         let invalid = |name, value, requirement| {
             Err(GeometryError::InvalidParameter {
@@ -95,6 +183,13 @@ impl IrlsParams {
         }
         if !(self.min_change.is_finite() && self.min_change >= 0.0) {
             return invalid("min_change", self.min_change, "must be finite and >= 0");
+        }
+        if !(self.sigma_offset_px.is_finite() && self.sigma_offset_px >= 0.0) {
+            return invalid(
+                "sigma_offset_px",
+                self.sigma_offset_px,
+                "must be finite and >= 0",
+            );
         }
         Ok(())
     }
@@ -183,6 +278,8 @@ pub struct IrlsWorkspace {
     weights: Vec<f64>,
     /// Scratch for the medians: order-preserving integer keys.
     keys: Vec<u64>,
+    /// Scratch for the polish: the sample's normalised matches.
+    polish: Vec<[f64; 4]>,
 }
 
 impl IrlsWorkspace {
@@ -203,15 +300,18 @@ impl IrlsWorkspace {
 
     /// IRLS-Tukey refinement (steps 3a–3f, Eqs. 23, 33, 34) of the hypothesis
     /// fitted to `sample` (indices into `points`, at least 8), starting from
-    /// `initial` or, when `None`, from the Hartley-normalised 8-point of the
-    /// sample. See the [module documentation](self) for the iteration.
+    /// `initial` or, when `None`, from the 8-point of the sample in the
+    /// variant of `params.fit` (Hartley-normalised by default). See the
+    /// [module documentation](self) for the iteration and the variants.
     ///
     /// Errors: invalid `params` ([`GeometryError::InvalidParameter`]); fewer
     /// than 8 sample indices ([`GeometryError::TooFewPoints`]); an index out
     /// of range; a non-finite or zero `initial`; a degenerate sample or
     /// inlier set ([`GeometryError::Degenerate`],
-    /// [`GeometryError::TooFewWeightedPoints`]); fewer than 8 inliers after an
-    /// iteration ([`GeometryError::TooFewInliers`]).
+    /// [`GeometryError::TooFewWeightedPoints`]; with
+    /// `unit_weight_fallback = false` also a degenerate weighted system);
+    /// fewer than 8 inliers after an iteration
+    /// ([`GeometryError::TooFewInliers`]).
     pub fn run(
         &mut self,
         points: &Correspondences,
@@ -232,7 +332,7 @@ impl IrlsWorkspace {
         }
         let mut f = match initial {
             Some(f) => checked_initial(f)?,
-            None => fit_normalized(points, sample.iter().map(|&i| (i, 1.0)))?,
+            None => refit(params.fit, points, sample.iter().map(|&i| (i, 1.0)))?,
         };
 
         // Start: the inlier set is the sample (duplicates collapse).
@@ -242,6 +342,9 @@ impl IrlsWorkspace {
             self.mask[i] = true;
         }
         self.collect_inliers();
+        if params.polish {
+            f = polish_at(points, &self.inliers, &f, &mut self.polish)?.f;
+        }
         self.residuals_in.resize(self.inliers.len(), 0.0);
         sampson_residuals_signed_at(&f, points, &self.inliers, &mut self.residuals_in);
         self.residuals_all.resize(n, 0.0);
@@ -251,7 +354,8 @@ impl IrlsWorkspace {
         for iteration in 1..=params.max_iters {
             iterations = iteration;
             // 3b-c: robust scale of the inlier residuals and Tukey weights.
-            let sigma = MAD_TO_SIGMA * mad_by_keys(&self.residuals_in, &mut self.keys);
+            let sigma = MAD_TO_SIGMA * mad_by_keys(&self.residuals_in, &mut self.keys)
+                + params.sigma_offset_px;
             self.weights.clear();
             if sigma.is_finite() && sigma > 0.0 {
                 let cs = params.tukey_c * sigma;
@@ -262,7 +366,8 @@ impl IrlsWorkspace {
             }
 
             // 3d: weighted 8-point on the current inliers.
-            let weighted = fit_normalized(
+            let weighted = refit(
+                params.fit,
                 points,
                 self.inliers
                     .iter()
@@ -271,8 +376,10 @@ impl IrlsWorkspace {
             );
             f = match weighted {
                 Ok(f) => f,
-                Err(GeometryError::TooFewWeightedPoints { .. } | GeometryError::Degenerate(_)) => {
-                    fit_normalized(points, self.inliers.iter().map(|&i| (i, 1.0)))?
+                Err(GeometryError::TooFewWeightedPoints { .. } | GeometryError::Degenerate(_))
+                    if params.unit_weight_fallback =>
+                {
+                    refit(params.fit, points, self.inliers.iter().map(|&i| (i, 1.0)))?
                 }
                 Err(e) => return Err(e),
             };
@@ -402,116 +509,15 @@ pub fn tukey_weight(u: f64) -> f64 {
     }
 }
 
-/// Median absolute deviation `median(|v − median(v)|)` (the MAD of Eq. 34,
-/// without the 1.4826 factor). The median of an even count is the mean of
-/// the two middle values. NaN for an empty slice. `scratch` is overwritten.
-///
-/// ```
-/// let mut scratch = Vec::new();
-/// let mad = geometry::median_absolute_deviation(&[1.0, 2.0, 3.0, 4.0, 100.0], &mut scratch);
-/// assert_eq!(mad, 1.0);
-/// ```
-pub fn median_absolute_deviation(values: &[f64], scratch: &mut Vec<f64>) -> f64 {
-    scratch.clear();
-    scratch.extend_from_slice(values);
-    let center = median_in_place(scratch);
-    for v in scratch.iter_mut() {
-        *v = (*v - center).abs();
-    }
-    median_in_place(scratch)
-}
-
-/// Median of `values` (reordered in place): the middle value, or the mean of
-/// the two middle values for an even count; NaN when empty.
-pub fn median_in_place(values: &mut [f64]) -> f64 {
-    let n = values.len();
-    if n == 0 {
-        return f64::NAN;
-    }
-    let (lower, &mut middle, _) = values.select_nth_unstable_by(n / 2, f64::total_cmp);
-    if n % 2 == 1 {
-        middle
-    } else {
-        let below = lower.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        0.5 * (below + middle)
-    }
-}
-
-/// Order-preserving map from `f64` (IEEE total order, as `f64::total_cmp`)
-/// to `u64`, so that medians are selected with integer comparisons.
-#[inline(always)]
-fn order_key(v: f64) -> u64 {
-    let bits = v.to_bits();
-    if bits >> 63 == 1 {
-        !bits
-    } else {
-        bits | (1 << 63)
-    }
-}
-
-/// Inverse of [`order_key`].
-#[inline(always)]
-fn from_order_key(key: u64) -> f64 {
-    f64::from_bits(if key >> 63 == 1 {
-        key & !(1 << 63)
-    } else {
-        !key
-    })
-}
-
-/// Median of the values behind `keys` (reordered), with the conventions of
-/// [`median_in_place`].
-fn median_of_keys(keys: &mut [u64]) -> f64 {
-    let n = keys.len();
-    if n == 0 {
-        return f64::NAN;
-    }
-    let (lower, middle, _) = keys.select_nth_unstable(n / 2);
-    let middle = from_order_key(*middle);
-    if n % 2 == 1 {
-        middle
-    } else {
-        let below = lower.iter().copied().max().map_or(f64::NAN, from_order_key);
-        0.5 * (below + middle)
-    }
-}
-
-/// [`median_absolute_deviation`] with integer-key selection and a
-/// reusable key buffer.
-fn mad_by_keys(values: &[f64], keys: &mut Vec<u64>) -> f64 {
-    keys.clear();
-    keys.extend(values.iter().map(|&v| order_key(v)));
-    let center = median_of_keys(keys);
-    keys.clear();
-    keys.extend(values.iter().map(|&v| order_key((v - center).abs())));
-    median_of_keys(keys)
-}
-
-/// The MAD of `values` when it is below `limit`, `None` when it is certainly
-/// `>= limit`: after the median `m`, counting the deviations `|v − m| <
-/// limit` decides the case without the second selection when fewer than
-/// half of them are below the limit.
-fn mad_below(values: &[f64], keys: &mut Vec<u64>, limit: f64) -> Option<f64> {
-    let n = values.len();
-    keys.clear();
-    keys.extend(values.iter().map(|&v| order_key(v)));
-    let center = median_of_keys(keys);
-    let below = values
-        .iter()
-        .map(|&v| usize::from((v - center).abs() < limit))
-        .sum::<usize>();
-    // The lower middle deviation (rank (n − 1) / 2) is >= limit, so the
-    // median of the deviations (of both middles when n is even) is too.
-    if n > 0 && below <= (n - 1) / 2 {
-        return None;
-    }
-    keys.clear();
-    keys.extend(values.iter().map(|&v| order_key((v - center).abs())));
-    let mad = median_of_keys(keys);
-    if mad >= limit {
-        None
-    } else {
-        Some(mad)
+/// The weighted 8-point of step 3d in the frame `fit` selects, on
+/// `(index, weight)` pairs.
+fn refit<I>(fit: IrlsFit, points: &Correspondences, items: I) -> Result<Matrix3<f64>, GeometryError>
+where
+    I: Iterator<Item = (usize, f64)> + Clone,
+{
+    match fit {
+        IrlsFit::Normalized => fit_normalized(points, items),
+        IrlsFit::Plain => fit_plain(points, items),
     }
 }
 
@@ -533,63 +539,6 @@ fn checked_initial(f: &Matrix3<f64>) -> Result<Matrix3<f64>, GeometryError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn median_matches_sorting() {
-        let data = [5.0, -1.0, 3.5, 2.0, 8.0, 0.0, 3.5, -7.25];
-        for len in 1..=data.len() {
-            let mut sorted = data[..len].to_vec();
-            sorted.sort_by(f64::total_cmp);
-            let expected = if len % 2 == 1 {
-                sorted[len / 2]
-            } else {
-                0.5 * (sorted[len / 2 - 1] + sorted[len / 2])
-            };
-            let mut v = data[..len].to_vec();
-            assert_eq!(median_in_place(&mut v), expected, "len {len}");
-        }
-        assert!(median_in_place(&mut []).is_nan());
-    }
-
-    #[test]
-    fn key_medians_equal_the_float_medians() {
-        let mut state = 12345u64;
-        let mut next = || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((state >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 20.0
-        };
-        let (mut keys, mut scratch) = (Vec::new(), Vec::new());
-        for n in 1..60 {
-            let mut values: Vec<f64> = (0..n).map(|_| next()).collect();
-            if n % 7 == 0 {
-                values[0] = -0.0;
-                values[n / 2] = f64::INFINITY;
-            }
-            for v in &values {
-                assert_eq!(from_order_key(order_key(*v)).to_bits(), v.to_bits());
-            }
-            let expected = median_absolute_deviation(&values, &mut scratch);
-            assert_eq!(mad_by_keys(&values, &mut keys), expected, "n {n}");
-            for limit in [0.0, expected * 0.999, expected, expected * 1.001, 100.0] {
-                match mad_below(&values, &mut keys, limit) {
-                    Some(mad) => assert!(mad == expected && mad < limit, "n {n}"),
-                    None => assert!(expected >= limit, "n {n}, limit {limit}"),
-                }
-            }
-        }
-    }
-
-    #[test]
-    fn mad_of_a_known_sample() {
-        let mut scratch = Vec::new();
-        // median 2.5; deviations 1.5, 0.5, 0.5, 1.5 -> MAD 1.0
-        assert_eq!(
-            median_absolute_deviation(&[1.0, 2.0, 3.0, 4.0], &mut scratch),
-            1.0
-        );
-    }
 
     #[test]
     fn tukey_weight_shape() {

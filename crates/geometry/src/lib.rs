@@ -3,11 +3,14 @@
 //! * [`Correspondences`] and [`FundamentalMatrix`]: checked input types.
 //! * [`sampson`]: the Sampson (Eq. 23) and symmetric epipolar (Eq. 24)
 //!   distances, single-point and batch forms, and the FROB distance (Eq. 45).
-//! * [`eight_point`]: the 8-point algorithm (step 2) in three variants,
-//!   plain, Hartley-normalised and weighted, each followed by rank-2
-//!   enforcement.
+//! * [`eight_point`]: the 8-point algorithm (step 2) in pixel (plain) and
+//!   Hartley-normalised coordinates, each unweighted or weighted, followed by
+//!   rank-2 enforcement.
 //! * [`irls`]: IRLS-Tukey refinement of a hypothesis (step 3, Section 5.2.1;
-//!   Eqs. 33–34).
+//!   Eqs. 33–34), with the reference code's variants as switches.
+//! * [`polish`]: the reference code's nonlinear polish of a sample's F
+//!   (PoseLib's `refine_fundamental`: Levenberg–Marquardt on the
+//!   Cauchy-robust Sampson error).
 //!
 //! Convention everywhere: a match (x1 ↔ x2) satisfies `x2ᵀ F x1 = 0`, with
 //! homogeneous pixel coordinates `x = (x, y, 1)`, `F` stored row-major in
@@ -19,18 +22,21 @@ pub mod eight_point;
 pub mod error;
 pub mod irls;
 mod linalg;
+mod mad;
+pub mod polish;
 pub mod sampson;
 pub mod types;
 
 pub use eight_point::{
-    eight_point_normalized, eight_point_plain, eight_point_weighted, enforce_rank2, MIN_POINTS,
-    RANK_TOLERANCE,
+    eight_point_normalized, eight_point_plain, eight_point_weighted, eight_point_weighted_plain,
+    enforce_rank2, MIN_POINTS, RANK_TOLERANCE,
 };
 pub use error::GeometryError;
 pub use irls::{
-    median_absolute_deviation, median_in_place, refine_irls_tukey, tukey_weight, IrlsParams,
-    IrlsSummary, IrlsWorkspace, RefinedModel, MAD_TO_SIGMA,
+    median_absolute_deviation, median_in_place, refine_irls_tukey, tukey_weight, IrlsFit,
+    IrlsParams, IrlsSummary, IrlsWorkspace, RefinedModel, MAD_TO_SIGMA,
 };
+pub use polish::{polish_fundamental, Polished, POLISH_LOSS_SCALE_PX, POLISH_MAX_ITERS};
 pub use sampson::{
     frob_distance, sampson_distance, sampson_distance_signed, sampson_distance_squared,
     sampson_distances_squared, sampson_residuals_signed, symmetric_epipolar_distance,

@@ -4,8 +4,8 @@
 mod common;
 
 use geometry::{
-    eight_point_normalized, eight_point_plain, eight_point_weighted, refine_irls_tukey,
-    Correspondences, GeometryError, IrlsParams,
+    eight_point_normalized, eight_point_plain, eight_point_weighted, eight_point_weighted_plain,
+    refine_irls_tukey, Correspondences, GeometryError, IrlsParams,
 };
 use nalgebra::Matrix3;
 use proptest::prelude::*;
@@ -16,10 +16,16 @@ fn unit_weighted(points: &Correspondences) -> Result<Matrix3<f64>, GeometryError
     eight_point_weighted(points, &vec![1.0; points.len()])
 }
 
-const VARIANTS: [(&str, Estimator); 3] = [
+fn varied_weighted_plain(points: &Correspondences) -> Result<Matrix3<f64>, GeometryError> {
+    let w: Vec<f64> = (0..points.len()).map(|i| 0.5 + (i % 3) as f64).collect();
+    eight_point_weighted_plain(points, &w)
+}
+
+const VARIANTS: [(&str, Estimator); 4] = [
     ("plain", eight_point_plain),
     ("normalized", eight_point_normalized),
     ("weighted", unit_weighted),
+    ("weighted plain", varied_weighted_plain),
 ];
 
 fn pixel() -> impl Strategy<Value = [f64; 2]> {

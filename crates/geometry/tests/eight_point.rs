@@ -5,8 +5,8 @@ mod common;
 
 use common::{naive_least_squares, naive_normalized, naive_rank2, point_lists, random_scene};
 use geometry::{
-    eight_point_normalized, eight_point_plain, eight_point_weighted, enforce_rank2, frob_distance,
-    sampson_distance, Correspondences, GeometryError,
+    eight_point_normalized, eight_point_plain, eight_point_weighted, eight_point_weighted_plain,
+    enforce_rank2, frob_distance, sampson_distance, Correspondences, GeometryError,
 };
 use nalgebra::Matrix3;
 use rand::{Rng, SeedableRng};
@@ -24,11 +24,18 @@ fn random_weighted(points: &Correspondences) -> Result<Matrix3<f64>, GeometryErr
     eight_point_weighted(points, &w)
 }
 
-const VARIANTS: [(&str, Estimator); 4] = [
+fn random_weighted_plain(points: &Correspondences) -> Result<Matrix3<f64>, GeometryError> {
+    let mut rng = ChaCha8Rng::seed_from_u64(points.len() as u64);
+    let w: Vec<f64> = (0..points.len()).map(|_| rng.gen_range(0.1..3.0)).collect();
+    eight_point_weighted_plain(points, &w)
+}
+
+const VARIANTS: [(&str, Estimator); 5] = [
     ("plain", eight_point_plain),
     ("normalized", eight_point_normalized),
     ("weighted (unit)", unit_weighted),
     ("weighted (random)", random_weighted),
+    ("weighted plain (random)", random_weighted_plain),
 ];
 
 #[test]
@@ -97,6 +104,42 @@ fn plain_variant_equals_the_svd_of_the_unnormalised_design_matrix() {
             let d = frob_distance(&f, &expected);
             assert!(d < 1e-9, "seed {seed}, N {}: FROB {d:e}", n + outliers);
         }
+    }
+}
+
+#[test]
+fn weighted_plain_variant_equals_the_svd_of_the_weighted_design_matrix() {
+    for seed in 0..10 {
+        // Exactly 8 positive weights (the null-space path), and more; zero
+        // weights among them.
+        for (n, outliers, zeros) in [(8, 0, 0), (9, 2, 3), (12, 2, 1), (100, 20, 30)] {
+            let mut rng = ChaCha8Rng::seed_from_u64(600 + seed);
+            let scene = random_scene(&mut rng, n, outliers, 0.7);
+            let (p1, p2) = point_lists(&scene.points);
+            let mut w: Vec<f64> = (0..p1.len()).map(|_| rng.gen_range(0.05..4.0)).collect();
+            w.iter_mut().rev().take(zeros).for_each(|v| *v = 0.0);
+            let expected = naive_rank2(&naive_least_squares(&p1, &p2, &w));
+            let f = eight_point_weighted_plain(&scene.points, &w).unwrap();
+            let d = frob_distance(&f, &expected);
+            assert!(d < 1e-9, "seed {seed}, N {}: FROB {d:e}", n + outliers);
+            // Scaling all weights does not move the minimiser.
+            let scaled: Vec<f64> = w.iter().map(|v| v * 37.5).collect();
+            let g = eight_point_weighted_plain(&scene.points, &scaled).unwrap();
+            assert!(frob_distance(&f, &g) < 1e-12, "seed {seed}: scale");
+        }
+    }
+}
+
+#[test]
+fn unit_weights_give_the_plain_estimate_bit_for_bit() {
+    for seed in 0..10 {
+        let mut rng = ChaCha8Rng::seed_from_u64(700 + seed);
+        let scene = random_scene(&mut rng, [8, 30][seed as usize % 2], 5, 0.5);
+        let unit = vec![1.0; scene.points.len()];
+        assert_eq!(
+            eight_point_weighted_plain(&scene.points, &unit),
+            eight_point_plain(&scene.points)
+        );
     }
 }
 
@@ -204,10 +247,18 @@ fn fewer_than_eight_points_is_an_error() {
 
 #[test]
 fn weight_errors_name_the_problem() {
+    type Weighted = fn(&Correspondences, &[f64]) -> Result<Matrix3<f64>, GeometryError>;
+    let estimators: [Weighted; 2] = [eight_point_weighted, eight_point_weighted_plain];
+    for estimate in estimators {
+        weight_errors(estimate);
+    }
+}
+
+fn weight_errors(estimate: fn(&Correspondences, &[f64]) -> Result<Matrix3<f64>, GeometryError>) {
     let mut rng = ChaCha8Rng::seed_from_u64(12);
     let scene = random_scene(&mut rng, 10, 0, 0.0);
     assert_eq!(
-        eight_point_weighted(&scene.points, &[1.0; 9]),
+        estimate(&scene.points, &[1.0; 9]),
         Err(GeometryError::WeightCountMismatch {
             weights: 9,
             points: 10
@@ -216,7 +267,7 @@ fn weight_errors_name_the_problem() {
     let mut w = vec![1.0; 10];
     w[4] = -0.5;
     assert_eq!(
-        eight_point_weighted(&scene.points, &w),
+        estimate(&scene.points, &w),
         Err(GeometryError::InvalidWeight {
             index: 4,
             value: -0.5
@@ -225,12 +276,12 @@ fn weight_errors_name_the_problem() {
     w[4] = 1.0;
     w[6] = f64::INFINITY;
     assert!(matches!(
-        eight_point_weighted(&scene.points, &w),
+        estimate(&scene.points, &w),
         Err(GeometryError::InvalidWeight { index: 6, .. })
     ));
     w[6] = f64::NAN;
     assert!(matches!(
-        eight_point_weighted(&scene.points, &w),
+        estimate(&scene.points, &w),
         Err(GeometryError::InvalidWeight { index: 6, .. })
     ));
     let mut w = vec![1.0; 10];
@@ -238,7 +289,7 @@ fn weight_errors_name_the_problem() {
     w[1] = 0.0;
     w[2] = 0.0;
     assert_eq!(
-        eight_point_weighted(&scene.points, &w),
+        estimate(&scene.points, &w),
         Err(GeometryError::TooFewWeightedPoints { got: 7, needed: 8 })
     );
     let message = GeometryError::InvalidWeight {
