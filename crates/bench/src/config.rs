@@ -10,7 +10,7 @@ use serde::de::{self, Deserializer};
 use serde::{Deserialize, Serialize, Serializer};
 
 pub use segmentation::{
-    EightPoint, FocalSolver, Linkage, LocalTest, Method, OnFailure, ParamError, Params,
+    EightPoint, FocalSolver, IrlsFit, Linkage, LocalTest, Method, OnFailure, ParamError, Params,
     WeightPreset, WeightSets,
 };
 use std::path::{Path, PathBuf};
@@ -38,6 +38,10 @@ pub struct PipelineConfig {
     pub tau_diff: f64,
     pub tau_range: f64,
     pub irls_iters: usize,
+    pub irls_fit: IrlsFit,
+    pub irls_unit_weight_fallback: bool,
+    pub irls_sigma_offset_px: f64,
+    pub irls_polish: bool,
     pub refine: bool,
     pub eight_point: EightPoint,
     pub focal_solver: FocalSolver,
@@ -68,7 +72,7 @@ impl Default for PipelineConfig {
 
 /// The keys of [`PipelineConfig`] in declaration order: the order of the
 /// swept-parameter columns in every output file.
-pub const PIPELINE_KEYS: [&str; 19] = [
+pub const PIPELINE_KEYS: [&str; 23] = [
     "method",
     "num_samples",
     "mss_size",
@@ -76,6 +80,10 @@ pub const PIPELINE_KEYS: [&str; 19] = [
     "tau_diff",
     "tau_range",
     "irls_iters",
+    "irls_fit",
+    "irls_unit_weight_fallback",
+    "irls_sigma_offset_px",
+    "irls_polish",
     "refine",
     "eight_point",
     "focal_solver",
@@ -101,6 +109,10 @@ impl PipelineConfig {
             tau_diff: p.tau_diff,
             tau_range: p.tau_range,
             irls_iters: p.irls_iters,
+            irls_fit: p.irls_fit,
+            irls_unit_weight_fallback: p.irls_unit_weight_fallback,
+            irls_sigma_offset_px: p.irls_sigma_offset_px,
+            irls_polish: p.irls_polish,
             refine: p.refine,
             eight_point: p.eight_point,
             focal_solver: p.focal_solver,
@@ -126,6 +138,10 @@ impl PipelineConfig {
             tau_diff: self.tau_diff,
             tau_range: self.tau_range,
             irls_iters: self.irls_iters,
+            irls_fit: self.irls_fit,
+            irls_unit_weight_fallback: self.irls_unit_weight_fallback,
+            irls_sigma_offset_px: self.irls_sigma_offset_px,
+            irls_polish: self.irls_polish,
             refine: self.refine,
             eight_point: self.eight_point,
             focal_solver: self.focal_solver,
@@ -381,6 +397,10 @@ EXPERIMENT FILE (TOML)
   tau_diff = 0.05              local test |f1-f2|/f_avg < tau_diff (Eq. 36)
   tau_range = 0.2              band |f_avg-f_peak|/f_peak <= tau_range (Eq. 37)
   irls_iters = 5               IRLS-Tukey outer iterations
+  irls_fit = \"normalized\"      IRLS refit: normalized | plain (reference code)
+  irls_unit_weight_fallback = true   false: < 8 positive weights drop the hypothesis
+  irls_sigma_offset_px = 0.0   sigma = 1.4826 MAD + offset (reference code: 1e-12)
+  irls_polish = false          LM polish of each sample's F first (reference code)
   refine = true                false: raw minimal-sample F (ablation)
   eight_point = \"normalized\"   normalized | plain
   focal_solver = \"kocur\"       kocur | bougnoux | external (read from focal_file)

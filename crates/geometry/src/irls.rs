@@ -68,7 +68,7 @@ pub const MAD_TO_SIGMA: f64 = 1.4826;
 
 /// How step 4 of the IRLS iteration refits `F` from the weighted inliers.
 /// Written `"normalized"` or `"plain"` in configuration files.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum IrlsFit {
     /// The weighted 8-point on Hartley-normalised coordinates (weighted

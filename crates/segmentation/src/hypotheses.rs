@@ -2,9 +2,7 @@
 //! IRLS-Tukey refinement of each.
 
 use crate::{minimal_sample, EightPoint, Matches, Params, SegmentationError};
-use geometry::{
-    eight_point_normalized, eight_point_plain, Correspondences, IrlsParams, IrlsWorkspace,
-};
+use geometry::{eight_point_normalized, eight_point_plain, Correspondences, IrlsWorkspace};
 use nalgebra::Matrix3;
 use rayon::prelude::*;
 use std::time::Instant;
@@ -123,11 +121,7 @@ fn refine_fits(
     if !params.refine {
         return fits.iter().map(|fit| fit.as_ref().map(|s| s.f)).collect();
     }
-    let irls = IrlsParams {
-        thr_px: params.thr_px,
-        max_iters: params.irls_iters,
-        ..IrlsParams::default()
-    };
+    let irls = params.irls();
     fits.par_iter()
         .map_init(IrlsWorkspace::new, |ws, fit| {
             let fit = fit.as_ref()?;

@@ -45,8 +45,8 @@ pub use focals::{
 pub use hypotheses::{centred_points, generate_hypotheses, GeneratedHypotheses};
 pub use input::{image_centre, Matches};
 pub use params::{
-    EightPoint, FocalKey, FocalSolver, HypothesisKey, Linkage, LocalTest, Method, OnFailure,
-    ParamError, Params, WeightPreset, WeightSets, PARAM_KEYS,
+    EightPoint, FocalKey, FocalSolver, HypothesisKey, IrlsFit, Linkage, LocalTest, Method,
+    OnFailure, ParamError, Params, WeightPreset, WeightSets, PARAM_KEYS,
 };
 pub use result::{
     ClusterModel, Hypothesis, HypothesisCounts, HypothesisStatus, Segmentation, StageTimings,

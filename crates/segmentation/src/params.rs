@@ -9,6 +9,8 @@
 pub use clustering::Linkage;
 use focal::FocalWeights;
 pub use focal::OnFailure;
+pub use geometry::IrlsFit;
+use geometry::IrlsParams;
 use thiserror::Error;
 
 /// Which hypotheses reach the clustering (Algorithm 1 steps 4–6).
@@ -159,6 +161,25 @@ pub struct Params {
     pub tau_range: f64,
     /// Outer IRLS-Tukey iterations (step 3, Eqs. 33–34). Table 1: 5.
     pub irls_iters: usize,
+    /// The weighted refit of each IRLS iteration (step 3d): `normalized`
+    /// (Hartley-normalised weighted 8-point, the text) or `plain` (the
+    /// weighted system in centred pixel coordinates, the reference code).
+    /// Default `normalized`.
+    pub irls_fit: IrlsFit,
+    /// When fewer than 8 Tukey weights are positive (or the weighted system
+    /// is rank-deficient), refit with unit weights (`true`, this project's
+    /// rule for the case the text leaves open) or drop the hypothesis
+    /// (`false`, the closest reproducible reading of the reference code).
+    /// Default `true`.
+    pub irls_unit_weight_fallback: bool,
+    /// Added to the robust scale of IRLS (Eq. 34), px:
+    /// `σ = 1.4826 · MAD + irls_sigma_offset_px`. Default 0 (the text); the
+    /// reference code adds 1e-12.
+    pub irls_sigma_offset_px: f64,
+    /// Polish each minimal-sample F on its sample before IRLS by
+    /// Levenberg–Marquardt on the Sampson error (PoseLib's
+    /// `refine_fundamental`, as the reference code does). Default `false`.
+    pub irls_polish: bool,
     /// Refine each minimal-sample F by IRLS-Tukey (step 3); `false` is the
     /// "raw MSS" ablation. Default `true`.
     pub refine: bool,
@@ -204,6 +225,10 @@ impl Default for Params {
             tau_diff: 0.05,
             tau_range: 0.20,
             irls_iters: 5,
+            irls_fit: IrlsFit::Normalized,
+            irls_unit_weight_fallback: true,
+            irls_sigma_offset_px: 0.0,
+            irls_polish: false,
             refine: true,
             eight_point: EightPoint::Normalized,
             focal_solver: FocalSolver::Kocur,
@@ -220,7 +245,7 @@ impl Default for Params {
 }
 
 /// The keys of [`Params`] in declaration order.
-pub const PARAM_KEYS: [&str; 18] = [
+pub const PARAM_KEYS: [&str; 22] = [
     "method",
     "num_samples",
     "mss_size",
@@ -228,6 +253,10 @@ pub const PARAM_KEYS: [&str; 18] = [
     "tau_diff",
     "tau_range",
     "irls_iters",
+    "irls_fit",
+    "irls_unit_weight_fallback",
+    "irls_sigma_offset_px",
+    "irls_polish",
     "refine",
     "eight_point",
     "focal_solver",
@@ -294,6 +323,15 @@ impl Params {
                 "must be at least 1 when refine = true",
             ));
         }
+        if !(self.irls_sigma_offset_px.is_finite() && self.irls_sigma_offset_px >= 0.0) {
+            return Err(ParamError::new(
+                "irls_sigma_offset_px",
+                format!(
+                    "must be a finite number >= 0, got {}",
+                    self.irls_sigma_offset_px
+                ),
+            ));
+        }
         if self.max_iters == 0 {
             return Err(ParamError::new("max_iters", "must be at least 1"));
         }
@@ -331,6 +369,23 @@ impl Params {
             refine: self.refine,
             thr_px_bits: self.thr_px.to_bits(),
             irls_iters: self.irls_iters,
+            irls_fit: self.irls_fit,
+            irls_unit_weight_fallback: self.irls_unit_weight_fallback,
+            irls_sigma_offset_bits: self.irls_sigma_offset_px.to_bits(),
+            irls_polish: self.irls_polish,
+        }
+    }
+
+    /// The IRLS-Tukey parameters of step 3.
+    pub fn irls(&self) -> IrlsParams {
+        IrlsParams {
+            thr_px: self.thr_px,
+            max_iters: self.irls_iters,
+            fit: self.irls_fit,
+            unit_weight_fallback: self.irls_unit_weight_fallback,
+            sigma_offset_px: self.irls_sigma_offset_px,
+            polish: self.irls_polish,
+            ..IrlsParams::default()
         }
     }
 
@@ -357,6 +412,10 @@ pub struct HypothesisKey {
     refine: bool,
     thr_px_bits: u64,
     irls_iters: usize,
+    irls_fit: IrlsFit,
+    irls_unit_weight_fallback: bool,
+    irls_sigma_offset_bits: u64,
+    irls_polish: bool,
 }
 
 /// The parameters of step 4 ([`Params::focal_key`]).
