@@ -1,3 +1,4 @@
+#![warn(missing_docs)]
 //! The semi-calibrated T-Linkage pipeline (Algorithm 1) as a library, and the
 //! evaluation harness behind the `sctl` binary.
 

@@ -16,29 +16,41 @@ pub enum ClusteringError {
     /// is accepted and means "no preference").
     #[error("invalid residual {value} for point {point}, hypothesis {hypothesis}: residuals must be >= 0 and not NaN")]
     InvalidResidual {
+        /// The point (row).
         point: usize,
+        /// The hypothesis (column).
         hypothesis: usize,
+        /// The offending value.
         value: f64,
     },
     /// A preference value given directly is NaN, infinite or outside `[0, 1]`.
     #[error("invalid preference {value} for point {point}, hypothesis {hypothesis}: preferences must lie in [0, 1]")]
     InvalidPreference {
+        /// The point (row).
         point: usize,
+        /// The hypothesis (column).
         hypothesis: usize,
+        /// The offending value.
         value: f64,
     },
     /// One hypothesis's residual column does not have one value per point.
     #[error("hypothesis {hypothesis} has {got} residuals, expected one per point ({expected})")]
     ColumnLength {
+        /// The hypothesis (column).
         hypothesis: usize,
+        /// The length expected.
         expected: usize,
+        /// The length given.
         got: usize,
     },
     /// A row of a row-major input does not have the length of the first row.
     #[error("point {point} has {got} values, expected {expected} (the length of the first row)")]
     RaggedRow {
+        /// The point (row).
         point: usize,
+        /// The length expected.
         expected: usize,
+        /// The length given.
         got: usize,
     },
     /// More points than the clustering can index (cluster ids are `u32`, labels `i32`).

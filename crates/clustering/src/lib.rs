@@ -1,3 +1,4 @@
+#![warn(missing_docs)]
 //! The clustering phase of Algorithm 1 (method.md steps 7–9; thesis Sections
 //! 5.2.4 and 6.3): preference matrices and T-Linkage / J-Linkage.
 //!
