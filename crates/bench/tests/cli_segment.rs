@@ -77,6 +77,35 @@ fn segments_a_match_file_and_writes_one_label_per_row() {
     assert!(String::from_utf8(output.stderr)
         .unwrap()
         .contains("motion(s) found"));
+
+    // The samples depend on the seed, not on the file's name: the same
+    // labels and the same hypothesis counts (which differ between samples)
+    // under another name, and other counts under another seed.
+    let summary = |file: &Path, config: &Path| {
+        let output = sctl()
+            .arg("segment")
+            .arg("--matches")
+            .arg(file)
+            .args(["--width", "1024", "--height", "768", "--config"])
+            .arg(config)
+            .output()
+            .unwrap();
+        assert!(output.status.success());
+        let stderr = String::from_utf8(output.stderr).unwrap();
+        let counts = stderr[stderr.find("hypotheses kept").unwrap()..]
+            .lines()
+            .next()
+            .unwrap()
+            .to_string();
+        (String::from_utf8(output.stdout).unwrap(), counts)
+    };
+    let renamed = dir.path().join("another name.csv");
+    std::fs::copy(&matches, &renamed).unwrap();
+    let (original, counts) = summary(&matches, &params);
+    assert_eq!(summary(&renamed, &params), (original, counts.clone()));
+    let other_seed = dir.path().join("seed.toml");
+    std::fs::write(&other_seed, "[pipeline]\nnum_samples = 300\nseed = 7\n").unwrap();
+    assert_ne!(summary(&matches, &other_seed).1, counts);
 }
 
 #[test]
