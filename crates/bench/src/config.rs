@@ -233,7 +233,8 @@ pub struct DatasetConfig {
     /// Inclusive scene-index range `[first, last]`. Default: all.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub index_range: Option<[u32; 2]>,
-    /// Synthetic generator preset (`quick`, `hopef-like`). Default `quick`.
+    /// Synthetic generator preset, one of [`datasets::synthetic::Preset::ALL`] by
+    /// name (`quick`, `hopef-like`, `kitti-like`). Default `quick`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub preset: Option<String>,
     /// Synthetic generator seed. Default 1.
@@ -899,6 +900,29 @@ mod tests {
                 "{key} is not documented"
             );
         }
+    }
+
+    #[test]
+    fn help_lists_every_synthetic_preset_and_no_other() {
+        let line = CONFIG_KEYS_HELP
+            .lines()
+            .find(|l| l.trim_start().starts_with("preset = "))
+            .expect("the preset line");
+        let listed: Vec<&str> = line
+            .split_once("synthetic:")
+            .expect("the preset line names its choices")
+            .1
+            .split('|')
+            .map(str::trim)
+            .collect();
+        let mut known: Vec<&str> = datasets::synthetic::Preset::ALL
+            .iter()
+            .map(|p| p.name())
+            .collect();
+        let mut sorted = listed.clone();
+        sorted.sort_unstable();
+        known.sort_unstable();
+        assert_eq!(sorted, known, "help lists {listed:?}");
     }
 
     #[test]
