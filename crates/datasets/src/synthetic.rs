@@ -28,6 +28,7 @@
 //! outliers are independent uniform points in the two images, labelled 0.
 
 use crate::hopef::{scene_name, CAMERA_FILE, FEATURES_FILE};
+use crate::hopef_synth::{self, HopefTruth};
 use crate::npz::{write_npz, NpyArray};
 use crate::{DatasetError, Scene};
 use nalgebra::{Matrix3, Rotation3, Unit, Vector3};
@@ -288,6 +289,9 @@ pub struct SyntheticScene {
     pub ego_rotation: Matrix3<f64>,
     /// Camera ego-translation `t_e` (zero without background).
     pub ego_translation: Vector3<f64>,
+    /// The HOPE-F-faithful generator's record (`hopef` preset); `None` for
+    /// the scenes of [`generate_hopef_scene`].
+    pub hopef: Option<HopefTruth>,
 }
 
 /// The seed of scene `(category, index)` of a dataset generated with
@@ -355,6 +359,7 @@ pub fn generate_hopef_scene(
         intrinsics: generated.intrinsics,
         ego_rotation: generated.ego_rotation,
         ego_translation: generated.ego_translation,
+        hopef: None,
     })
 }
 
@@ -378,7 +383,8 @@ struct Track {
     label: i32,
 }
 
-fn uniform(rng: &mut ChaCha8Rng, [lo, hi]: [f64; 2]) -> f64 {
+/// A uniform draw from `[lo, hi]` (`lo` when the range is empty).
+pub(crate) fn uniform(rng: &mut ChaCha8Rng, [lo, hi]: [f64; 2]) -> f64 {
     if hi > lo {
         rng.gen_range(lo..=hi)
     } else {
@@ -415,7 +421,11 @@ fn skew(v: &Vector3<f64>) -> Matrix3<f64> {
 
 /// `F = K⁻ᵀ [T]ₓ R K⁻¹` scaled to unit Frobenius norm (`x₂ᵀ F x₁ = 0` for
 /// `X₂ = R X₁ + T`; Hartley & Zisserman Eq. 9.12).
-fn fundamental(k_inv: &Matrix3<f64>, r: &Matrix3<f64>, t: &Vector3<f64>) -> Matrix3<f64> {
+pub(crate) fn fundamental(
+    k_inv: &Matrix3<f64>,
+    r: &Matrix3<f64>,
+    t: &Vector3<f64>,
+) -> Matrix3<f64> {
     let f = k_inv.transpose() * skew(t) * r * k_inv;
     f / f.norm()
 }
@@ -903,6 +913,11 @@ impl Preset {
 /// no descriptor ratio, and 0 passes any ratio test); `K`, `R` = `R_e`,
 /// `t` = `t_e` and `image_size` = (W, H) (int64, an addition to HOPE-F's
 /// arrays that makes the round trip lossless).
+///
+/// Scenes of the `hopef` preset are written as HOPE-F writes them: their
+/// drawn `ratios`, the camera's `R` (Blender's camera-to-world rotation)
+/// and `t` = (0, 0, −d), and one `object_<i>.npz` per object
+/// ([`hopef_synth::layout`]).
 pub fn write_hopef_layout(root: &Path, scenes: &[SyntheticScene]) -> Result<(), DatasetError> {
     write_hopef_layout_with(root, scenes, |_, _| {})
 }
@@ -956,26 +971,26 @@ pub fn write_hopef_scene(dir: &Path, s: &SyntheticScene) -> Result<(), DatasetEr
         scene.gt_fundamentals.iter().flat_map(row_major).collect(),
     )
     .ok_or_else(shape_err)?;
-    let ratios = NpyArray::from_f64(vec![n], vec![0.0; n]).ok_or_else(shape_err)?;
+    let (ratios, rotation, translation) = match &s.hopef {
+        Some(truth) => (
+            truth.ratios.clone(),
+            truth.camera_rotation,
+            Vector3::new(0.0, 0.0, -truth.camera_distance),
+        ),
+        None => (vec![0.0; n], s.ego_rotation, s.ego_translation),
+    };
+    let ratios = NpyArray::from_f64(vec![n], ratios).ok_or_else(shape_err)?;
     let k = NpyArray::from_f64(vec![3, 3], row_major(&s.intrinsics)).ok_or_else(shape_err)?;
-    let r = NpyArray::from_f64(vec![3, 3], row_major(&s.ego_rotation)).ok_or_else(shape_err)?;
-    let t = NpyArray::from_f64(vec![3], s.ego_translation.iter().copied().collect())
-        .ok_or_else(shape_err)?;
+    let r = NpyArray::from_f64(vec![3, 3], row_major(&rotation)).ok_or_else(shape_err)?;
+    let t =
+        NpyArray::from_f64(vec![3], translation.iter().copied().collect()).ok_or_else(shape_err)?;
     let size = NpyArray::from_i64(
         vec![2],
         vec![i64::from(scene.image_size.0), i64::from(scene.image_size.1)],
     )
     .ok_or_else(shape_err)?;
 
-    let write = |name: &str, arrays: &[(&str, &NpyArray)]| -> Result<(), DatasetError> {
-        let path = dir.join(name);
-        let file = std::fs::File::create(&path).map_err(|e| DatasetError::io(&path, e))?;
-        write_npz(std::io::BufWriter::new(file), arrays).map_err(|source| DatasetError::Npz {
-            path: path.clone(),
-            array: None,
-            source,
-        })
-    };
+    let write = |name: &str, arrays: &[(&str, &NpyArray)]| write_npz_file(&dir.join(name), arrays);
     write(
         FEATURES_FILE,
         &[
@@ -989,5 +1004,22 @@ pub fn write_hopef_scene(dir: &Path, s: &SyntheticScene) -> Result<(), DatasetEr
     write(
         CAMERA_FILE,
         &[("K", &k), ("R", &r), ("t", &t), ("image_size", &size)],
-    )
+    )?;
+    match &s.hopef {
+        Some(truth) => hopef_synth::layout::write_objects(dir, truth),
+        None => Ok(()),
+    }
+}
+
+/// Writes `arrays` as the `.npz` archive `path`.
+pub(crate) fn write_npz_file(
+    path: &Path,
+    arrays: &[(&str, &NpyArray)],
+) -> Result<(), DatasetError> {
+    let file = std::fs::File::create(path).map_err(|e| DatasetError::io(path, e))?;
+    write_npz(std::io::BufWriter::new(file), arrays).map_err(|source| DatasetError::Npz {
+        path: path.to_path_buf(),
+        array: None,
+        source,
+    })
 }
