@@ -28,7 +28,7 @@
 //! outliers are independent uniform points in the two images, labelled 0.
 
 use crate::hopef::{scene_name, CAMERA_FILE, FEATURES_FILE};
-use crate::hopef_synth::{self, HopefTruth};
+use crate::hopef_synth::{self, HopefParams, HopefTruth};
 use crate::npz::{write_npz, NpyArray};
 use crate::{DatasetError, Scene};
 use nalgebra::{Matrix3, Rotation3, Unit, Vector3};
@@ -797,18 +797,70 @@ pub enum Preset {
     /// `kitti-like`: static background under ego-motion plus 1–2 movers
     /// (categories 1 and 2, folders 0900–0909): 20 scenes.
     KittiLike,
+    /// `hopef`: HOPE-F's own process ([`crate::hopef_synth`]), categories
+    /// 1–4 × folders 0000–0999 (train 0000–0799, validation 0800–0899, test
+    /// 0900–0999): 4000 scenes.
+    Hopef,
+}
+
+/// The parameters of a preset's generator.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum PresetParams {
+    /// The generator of this module ([`generate_hopef_scene`]).
+    Synthetic(SyntheticParams),
+    /// The HOPE-F-faithful generator ([`hopef_synth::generate_scene`]).
+    Hopef(HopefParams),
+}
+
+impl PresetParams {
+    /// Checks the parameters (see [`SyntheticParams::validate`] and
+    /// [`HopefParams::validate`]).
+    pub fn validate(&self) -> Result<(), DatasetError> {
+        match self {
+            PresetParams::Synthetic(p) => p.validate(),
+            PresetParams::Hopef(p) => p.validate(),
+        }
+    }
+
+    /// Generates scene `<category>/<index>` of a dataset made with `seed`.
+    pub fn generate_scene(
+        &self,
+        seed: u64,
+        category: u32,
+        index: u32,
+    ) -> Result<SyntheticScene, DatasetError> {
+        match self {
+            PresetParams::Synthetic(p) => generate_hopef_scene(p, seed, category, index),
+            PresetParams::Hopef(p) => hopef_synth::generate_scene(p, seed, category, index),
+        }
+    }
+
+    /// The parameters of this module's generator, if they are those.
+    pub fn as_synthetic(&self) -> Option<&SyntheticParams> {
+        match self {
+            PresetParams::Synthetic(p) => Some(p),
+            PresetParams::Hopef(_) => None,
+        }
+    }
 }
 
 impl Preset {
     /// All presets.
-    pub const ALL: [Preset; 3] = [Preset::HopefLike, Preset::Quick, Preset::KittiLike];
+    pub const ALL: [Preset; 4] = [
+        Preset::HopefLike,
+        Preset::Quick,
+        Preset::KittiLike,
+        Preset::Hopef,
+    ];
 
-    /// The preset's name (`hopef-like`, `quick`, `kitti-like`).
+    /// The preset's name (`hopef-like`, `quick`, `kitti-like`, `hopef`).
     pub fn name(self) -> &'static str {
         match self {
             Preset::HopefLike => "hopef-like",
             Preset::Quick => "quick",
             Preset::KittiLike => "kitti-like",
+            Preset::Hopef => "hopef",
         }
     }
 
@@ -824,8 +876,8 @@ impl Preset {
     }
 
     /// The generator parameters.
-    pub fn params(self) -> SyntheticParams {
-        match self {
+    pub fn params(self) -> PresetParams {
+        PresetParams::Synthetic(match self {
             Preset::HopefLike => SyntheticParams::default(),
             Preset::Quick => SyntheticParams {
                 points_per_object: [30, 50],
@@ -839,13 +891,32 @@ impl Preset {
                 },
                 ..SyntheticParams::default()
             },
+            Preset::Hopef => return PresetParams::Hopef(HopefParams::default()),
+        })
+    }
+
+    /// Reads a table of this preset's generator parameters (e.g. its own,
+    /// serialised, with a user's overrides merged in).
+    ///
+    /// ```
+    /// use datasets::synthetic::{Preset, PresetParams};
+    /// let table: toml::Value = toml::from_str("mismatch_share = [0.2, 0.3]").unwrap();
+    /// let PresetParams::Hopef(p) = Preset::Hopef.params_from_toml(table).unwrap() else {
+    ///     panic!("hopef parameters expected");
+    /// };
+    /// assert_eq!(p.mismatch_share, [0.2, 0.3]);
+    /// ```
+    pub fn params_from_toml(self, table: toml::Value) -> Result<PresetParams, toml::de::Error> {
+        match self.params() {
+            PresetParams::Synthetic(_) => table.try_into().map(PresetParams::Synthetic),
+            PresetParams::Hopef(_) => table.try_into().map(PresetParams::Hopef),
         }
     }
 
     /// The category folders (numbers of moving objects).
     pub fn categories(self) -> Vec<u32> {
         match self {
-            Preset::HopefLike => vec![1, 2, 3, 4],
+            Preset::HopefLike | Preset::Hopef => vec![1, 2, 3, 4],
             Preset::Quick | Preset::KittiLike => vec![1, 2],
         }
     }
@@ -856,6 +927,7 @@ impl Preset {
             Preset::HopefLike => 900..=999,
             Preset::Quick => 900..=901,
             Preset::KittiLike => 900..=909,
+            Preset::Hopef => 0..=999,
         }
     }
 
@@ -874,7 +946,7 @@ impl Preset {
     /// each scene.
     pub fn generate_with(
         self,
-        params: &SyntheticParams,
+        params: &PresetParams,
         seed: u64,
         mut progress: impl FnMut(usize, usize),
     ) -> Result<Vec<SyntheticScene>, DatasetError> {
@@ -882,7 +954,7 @@ impl Preset {
         let mut out = Vec::with_capacity(total);
         for category in self.categories() {
             for index in self.indices() {
-                out.push(generate_hopef_scene(params, seed, category, index)?);
+                out.push(params.generate_scene(seed, category, index)?);
                 progress(out.len(), total);
             }
         }
