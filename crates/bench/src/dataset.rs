@@ -9,7 +9,7 @@ use crate::config::{DatasetConfig, DatasetKind, Split};
 use anyhow::{bail, Context, Result};
 use datasets::adelaidermf::{self, AdelaideRmf};
 use datasets::hopef::{self, HopeF, Selection};
-use datasets::synthetic::{self, Preset};
+use datasets::synthetic::Preset;
 use datasets::{DataRootSources, Scene};
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
@@ -145,7 +145,8 @@ pub fn load_scenes(
             let params = preset.params();
             refs.par_iter()
                 .map(|&(c, i)| {
-                    synthetic::generate_hopef_scene(&params, seed, c, i)
+                    params
+                        .generate_scene(seed, c, i)
                         .map(|s| s.scene)
                         .map_err(anyhow::Error::from)
                 })

@@ -4,7 +4,7 @@ mod support;
 use support::sctl;
 
 use bench::metrics::ClusteringMetrics;
-use datasets::synthetic::{generate_hopef_scene, Preset};
+use datasets::synthetic::Preset;
 use predicates::prelude::*;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -12,7 +12,9 @@ use std::path::Path;
 /// Writes a synthetic two-motion scene as `x1,y1,x2,y2,label` and returns
 /// its ground-truth labels.
 fn write_matches(path: &Path) -> Vec<i32> {
-    let scene = generate_hopef_scene(&Preset::Quick.params(), 1, 2, 900)
+    let scene = Preset::Quick
+        .params()
+        .generate_scene(1, 2, 900)
         .unwrap()
         .scene;
     let labels = scene.labels.clone().unwrap();

@@ -6,8 +6,10 @@
 //! * [`hopef`]: HOPE-F scene folders (`.npz`), with split and category
 //!   selection.
 //! * [`user`]: a user's CSV or `matches.txt` file with a sidecar TOML.
-//! * [`synthetic`]: seeded HOPE-F-like scenes and a writer of the HOPE-F
-//!   layout.
+//! * [`synthetic`]: seeded HOPE-F-like scenes, the named presets and a
+//!   writer of the HOPE-F layout.
+//! * [`hopef_synth`]: scenes made by HOPE-F's own process (the `hopef`
+//!   preset), with its labelling and acceptance rules.
 //! * [`mat`], [`npz`]: the MATLAB v5 and NumPy readers behind the loaders,
 //!   safe on arbitrary bytes.
 //! * [`resolve_data_root`]: where datasets live (flag, `SCTL_DATA_ROOT`,
@@ -30,6 +32,7 @@ pub mod adelaidermf;
 pub mod data_root;
 pub mod error;
 pub mod hopef;
+pub mod hopef_synth;
 pub mod mat;
 pub mod npz;
 pub mod scene;

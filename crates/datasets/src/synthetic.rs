@@ -28,6 +28,7 @@
 //! outliers are independent uniform points in the two images, labelled 0.
 
 use crate::hopef::{scene_name, CAMERA_FILE, FEATURES_FILE};
+use crate::hopef_synth::{self, HopefParams, HopefTruth};
 use crate::npz::{write_npz, NpyArray};
 use crate::{DatasetError, Scene};
 use nalgebra::{Matrix3, Rotation3, Unit, Vector3};
@@ -288,6 +289,9 @@ pub struct SyntheticScene {
     pub ego_rotation: Matrix3<f64>,
     /// Camera ego-translation `t_e` (zero without background).
     pub ego_translation: Vector3<f64>,
+    /// The HOPE-F-faithful generator's record (`hopef` preset); `None` for
+    /// the scenes of [`generate_hopef_scene`].
+    pub hopef: Option<HopefTruth>,
 }
 
 /// The seed of scene `(category, index)` of a dataset generated with
@@ -355,6 +359,7 @@ pub fn generate_hopef_scene(
         intrinsics: generated.intrinsics,
         ego_rotation: generated.ego_rotation,
         ego_translation: generated.ego_translation,
+        hopef: None,
     })
 }
 
@@ -378,7 +383,8 @@ struct Track {
     label: i32,
 }
 
-fn uniform(rng: &mut ChaCha8Rng, [lo, hi]: [f64; 2]) -> f64 {
+/// A uniform draw from `[lo, hi]` (`lo` when the range is empty).
+pub(crate) fn uniform(rng: &mut ChaCha8Rng, [lo, hi]: [f64; 2]) -> f64 {
     if hi > lo {
         rng.gen_range(lo..=hi)
     } else {
@@ -415,7 +421,11 @@ fn skew(v: &Vector3<f64>) -> Matrix3<f64> {
 
 /// `F = K⁻ᵀ [T]ₓ R K⁻¹` scaled to unit Frobenius norm (`x₂ᵀ F x₁ = 0` for
 /// `X₂ = R X₁ + T`; Hartley & Zisserman Eq. 9.12).
-fn fundamental(k_inv: &Matrix3<f64>, r: &Matrix3<f64>, t: &Vector3<f64>) -> Matrix3<f64> {
+pub(crate) fn fundamental(
+    k_inv: &Matrix3<f64>,
+    r: &Matrix3<f64>,
+    t: &Vector3<f64>,
+) -> Matrix3<f64> {
     let f = k_inv.transpose() * skew(t) * r * k_inv;
     f / f.norm()
 }
@@ -787,18 +797,70 @@ pub enum Preset {
     /// `kitti-like`: static background under ego-motion plus 1–2 movers
     /// (categories 1 and 2, folders 0900–0909): 20 scenes.
     KittiLike,
+    /// `hopef`: HOPE-F's own process ([`crate::hopef_synth`]), categories
+    /// 1–4 × folders 0000–0999 (train 0000–0799, validation 0800–0899, test
+    /// 0900–0999): 4000 scenes.
+    Hopef,
+}
+
+/// The parameters of a preset's generator.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum PresetParams {
+    /// The generator of this module ([`generate_hopef_scene`]).
+    Synthetic(SyntheticParams),
+    /// The HOPE-F-faithful generator ([`hopef_synth::generate_scene`]).
+    Hopef(HopefParams),
+}
+
+impl PresetParams {
+    /// Checks the parameters (see [`SyntheticParams::validate`] and
+    /// [`HopefParams::validate`]).
+    pub fn validate(&self) -> Result<(), DatasetError> {
+        match self {
+            PresetParams::Synthetic(p) => p.validate(),
+            PresetParams::Hopef(p) => p.validate(),
+        }
+    }
+
+    /// Generates scene `<category>/<index>` of a dataset made with `seed`.
+    pub fn generate_scene(
+        &self,
+        seed: u64,
+        category: u32,
+        index: u32,
+    ) -> Result<SyntheticScene, DatasetError> {
+        match self {
+            PresetParams::Synthetic(p) => generate_hopef_scene(p, seed, category, index),
+            PresetParams::Hopef(p) => hopef_synth::generate_scene(p, seed, category, index),
+        }
+    }
+
+    /// The parameters of this module's generator, if they are those.
+    pub fn as_synthetic(&self) -> Option<&SyntheticParams> {
+        match self {
+            PresetParams::Synthetic(p) => Some(p),
+            PresetParams::Hopef(_) => None,
+        }
+    }
 }
 
 impl Preset {
     /// All presets.
-    pub const ALL: [Preset; 3] = [Preset::HopefLike, Preset::Quick, Preset::KittiLike];
+    pub const ALL: [Preset; 4] = [
+        Preset::HopefLike,
+        Preset::Quick,
+        Preset::KittiLike,
+        Preset::Hopef,
+    ];
 
-    /// The preset's name (`hopef-like`, `quick`, `kitti-like`).
+    /// The preset's name (`hopef-like`, `quick`, `kitti-like`, `hopef`).
     pub fn name(self) -> &'static str {
         match self {
             Preset::HopefLike => "hopef-like",
             Preset::Quick => "quick",
             Preset::KittiLike => "kitti-like",
+            Preset::Hopef => "hopef",
         }
     }
 
@@ -814,8 +876,8 @@ impl Preset {
     }
 
     /// The generator parameters.
-    pub fn params(self) -> SyntheticParams {
-        match self {
+    pub fn params(self) -> PresetParams {
+        PresetParams::Synthetic(match self {
             Preset::HopefLike => SyntheticParams::default(),
             Preset::Quick => SyntheticParams {
                 points_per_object: [30, 50],
@@ -829,13 +891,32 @@ impl Preset {
                 },
                 ..SyntheticParams::default()
             },
+            Preset::Hopef => return PresetParams::Hopef(HopefParams::default()),
+        })
+    }
+
+    /// Reads a table of this preset's generator parameters (e.g. its own,
+    /// serialised, with a user's overrides merged in).
+    ///
+    /// ```
+    /// use datasets::synthetic::{Preset, PresetParams};
+    /// let table: toml::Value = toml::from_str("mismatch_share = [0.2, 0.3]").unwrap();
+    /// let PresetParams::Hopef(p) = Preset::Hopef.params_from_toml(table).unwrap() else {
+    ///     panic!("hopef parameters expected");
+    /// };
+    /// assert_eq!(p.mismatch_share, [0.2, 0.3]);
+    /// ```
+    pub fn params_from_toml(self, table: toml::Value) -> Result<PresetParams, toml::de::Error> {
+        match self.params() {
+            PresetParams::Synthetic(_) => table.try_into().map(PresetParams::Synthetic),
+            PresetParams::Hopef(_) => table.try_into().map(PresetParams::Hopef),
         }
     }
 
     /// The category folders (numbers of moving objects).
     pub fn categories(self) -> Vec<u32> {
         match self {
-            Preset::HopefLike => vec![1, 2, 3, 4],
+            Preset::HopefLike | Preset::Hopef => vec![1, 2, 3, 4],
             Preset::Quick | Preset::KittiLike => vec![1, 2],
         }
     }
@@ -846,6 +927,7 @@ impl Preset {
             Preset::HopefLike => 900..=999,
             Preset::Quick => 900..=901,
             Preset::KittiLike => 900..=909,
+            Preset::Hopef => 0..=999,
         }
     }
 
@@ -864,7 +946,7 @@ impl Preset {
     /// each scene.
     pub fn generate_with(
         self,
-        params: &SyntheticParams,
+        params: &PresetParams,
         seed: u64,
         mut progress: impl FnMut(usize, usize),
     ) -> Result<Vec<SyntheticScene>, DatasetError> {
@@ -872,7 +954,7 @@ impl Preset {
         let mut out = Vec::with_capacity(total);
         for category in self.categories() {
             for index in self.indices() {
-                out.push(generate_hopef_scene(params, seed, category, index)?);
+                out.push(params.generate_scene(seed, category, index)?);
                 progress(out.len(), total);
             }
         }
@@ -903,6 +985,11 @@ impl Preset {
 /// no descriptor ratio, and 0 passes any ratio test); `K`, `R` = `R_e`,
 /// `t` = `t_e` and `image_size` = (W, H) (int64, an addition to HOPE-F's
 /// arrays that makes the round trip lossless).
+///
+/// Scenes of the `hopef` preset are written as HOPE-F writes them: their
+/// drawn `ratios`, the camera's `R` (Blender's camera-to-world rotation)
+/// and `t` = (0, 0, −d), and one `object_<i>.npz` per object
+/// ([`hopef_synth::layout`]).
 pub fn write_hopef_layout(root: &Path, scenes: &[SyntheticScene]) -> Result<(), DatasetError> {
     write_hopef_layout_with(root, scenes, |_, _| {})
 }
@@ -956,26 +1043,26 @@ pub fn write_hopef_scene(dir: &Path, s: &SyntheticScene) -> Result<(), DatasetEr
         scene.gt_fundamentals.iter().flat_map(row_major).collect(),
     )
     .ok_or_else(shape_err)?;
-    let ratios = NpyArray::from_f64(vec![n], vec![0.0; n]).ok_or_else(shape_err)?;
+    let (ratios, rotation, translation) = match &s.hopef {
+        Some(truth) => (
+            truth.ratios.clone(),
+            truth.camera_rotation,
+            Vector3::new(0.0, 0.0, -truth.camera_distance),
+        ),
+        None => (vec![0.0; n], s.ego_rotation, s.ego_translation),
+    };
+    let ratios = NpyArray::from_f64(vec![n], ratios).ok_or_else(shape_err)?;
     let k = NpyArray::from_f64(vec![3, 3], row_major(&s.intrinsics)).ok_or_else(shape_err)?;
-    let r = NpyArray::from_f64(vec![3, 3], row_major(&s.ego_rotation)).ok_or_else(shape_err)?;
-    let t = NpyArray::from_f64(vec![3], s.ego_translation.iter().copied().collect())
-        .ok_or_else(shape_err)?;
+    let r = NpyArray::from_f64(vec![3, 3], row_major(&rotation)).ok_or_else(shape_err)?;
+    let t =
+        NpyArray::from_f64(vec![3], translation.iter().copied().collect()).ok_or_else(shape_err)?;
     let size = NpyArray::from_i64(
         vec![2],
         vec![i64::from(scene.image_size.0), i64::from(scene.image_size.1)],
     )
     .ok_or_else(shape_err)?;
 
-    let write = |name: &str, arrays: &[(&str, &NpyArray)]| -> Result<(), DatasetError> {
-        let path = dir.join(name);
-        let file = std::fs::File::create(&path).map_err(|e| DatasetError::io(&path, e))?;
-        write_npz(std::io::BufWriter::new(file), arrays).map_err(|source| DatasetError::Npz {
-            path: path.clone(),
-            array: None,
-            source,
-        })
-    };
+    let write = |name: &str, arrays: &[(&str, &NpyArray)]| write_npz_file(&dir.join(name), arrays);
     write(
         FEATURES_FILE,
         &[
@@ -989,5 +1076,22 @@ pub fn write_hopef_scene(dir: &Path, s: &SyntheticScene) -> Result<(), DatasetEr
     write(
         CAMERA_FILE,
         &[("K", &k), ("R", &r), ("t", &t), ("image_size", &size)],
-    )
+    )?;
+    match &s.hopef {
+        Some(truth) => hopef_synth::layout::write_objects(dir, truth),
+        None => Ok(()),
+    }
+}
+
+/// Writes `arrays` as the `.npz` archive `path`.
+pub(crate) fn write_npz_file(
+    path: &Path,
+    arrays: &[(&str, &NpyArray)],
+) -> Result<(), DatasetError> {
+    let file = std::fs::File::create(path).map_err(|e| DatasetError::io(path, e))?;
+    write_npz(std::io::BufWriter::new(file), arrays).map_err(|source| DatasetError::Npz {
+        path: path.to_path_buf(),
+        array: None,
+        source,
+    })
 }

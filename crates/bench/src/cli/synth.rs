@@ -3,7 +3,7 @@
 //! on-disk layout, plus `synthetic.toml` recording how it was made.
 
 use anyhow::{bail, Context};
-use datasets::synthetic::{write_hopef_layout_with, Preset, SyntheticParams};
+use datasets::synthetic::{write_hopef_layout_with, Preset, PresetParams};
 use std::path::{Path, PathBuf};
 
 /// Name of the file, at the top of the output directory, that records the
@@ -13,8 +13,9 @@ pub const METADATA_FILE: &str = "synthetic.toml";
 /// Options of `sctl synth`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Preset: hopef-like (4 x 100 scenes), quick (4 small scenes) or
-    /// kitti-like (background + movers, 20 scenes).
+    /// Preset: hopef-like (4 x 100 scenes), quick (4 small scenes),
+    /// kitti-like (background + movers, 20 scenes) or hopef (HOPE-F's own
+    /// process, 4 x 1000 scenes with train/val/test folders).
     #[arg(long, default_value = "hopef-like")]
     pub preset: String,
     /// Output directory (created; must be empty unless --force).
@@ -24,7 +25,7 @@ pub struct Args {
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
     /// TOML file of generator parameters overriding the preset's (any subset
-    /// of the fields of `SyntheticParams`).
+    /// of the fields of `SyntheticParams`, or of `HopefParams` for hopef).
     #[arg(long, value_name = "FILE")]
     pub params: Option<PathBuf>,
     /// Write into a non-empty directory, replacing files of the same names.
@@ -50,10 +51,7 @@ fn merge(base: &mut toml::Value, overrides: toml::Value) {
 }
 
 /// The preset's parameters with the fields of the TOML file `path` replaced.
-pub fn params_with_overrides(
-    preset: Preset,
-    path: Option<&Path>,
-) -> anyhow::Result<SyntheticParams> {
+pub fn params_with_overrides(preset: Preset, path: Option<&Path>) -> anyhow::Result<PresetParams> {
     let base = preset.params();
     let Some(path) = path else { return Ok(base) };
     let text = std::fs::read_to_string(path)
@@ -62,8 +60,8 @@ pub fn params_with_overrides(
         toml::from_str(&text).with_context(|| format!("{}: not valid TOML", path.display()))?;
     let mut merged = toml::Value::try_from(&base).context("encoding preset parameters")?;
     merge(&mut merged, overrides);
-    let params: SyntheticParams = merged
-        .try_into()
+    let params = preset
+        .params_from_toml(merged)
         .with_context(|| format!("{}: not valid generator parameters", path.display()))?;
     params
         .validate()

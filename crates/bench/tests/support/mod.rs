@@ -3,7 +3,7 @@
 #![allow(dead_code)]
 
 use assert_cmd::Command;
-use datasets::synthetic::{generate_hopef_scene, Preset};
+use datasets::synthetic::Preset;
 use datasets::Scene;
 use std::path::PathBuf;
 
@@ -19,7 +19,9 @@ pub fn quickstart() -> PathBuf {
 
 /// Scene `index` of `category` of the synthetic `quick` preset (generator seed 1).
 pub fn quick_scene(category: u32, index: u32) -> Scene {
-    generate_hopef_scene(&Preset::Quick.params(), 1, category, index)
+    Preset::Quick
+        .params()
+        .generate_scene(1, category, index)
         .unwrap()
         .scene
 }
