@@ -234,7 +234,7 @@ pub struct DatasetConfig {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub index_range: Option<[u32; 2]>,
     /// Synthetic generator preset, one of [`datasets::synthetic::Preset::ALL`] by
-    /// name (`quick`, `hopef-like`, `kitti-like`). Default `quick`.
+    /// name (`quick`, `hopef-like`, `kitti-like`, `hopef`). Default `quick`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub preset: Option<String>,
     /// Synthetic generator seed. Default 1.
@@ -379,11 +379,11 @@ EXPERIMENT FILE (TOML)
   kind = \"adelaidermf\"         adelaidermf | hopef | synthetic | csv
   data_root = \"datasets\"       overridden by --data-root and SCTL_DATA_ROOT
   scenes = [\"biscuit\", ...]    scene names (default: all)
-  split = \"test\"               hopef: train | val | test
+  split = \"test\"               hopef, synthetic: train | val | test
   categories = [1, 2]          hopef, synthetic: numbers of moving objects
   index_range = [900, 909]     inclusive scene indices (hopef folder number,
                                else position in the scene list)
-  preset = \"quick\"             synthetic: quick | hopef-like | kitti-like
+  preset = \"quick\"             synthetic: quick | hopef-like | kitti-like | hopef
   generator_seed = 1           synthetic generator seed
   files = [\"pair.csv\"]         csv: match files (x1,y1,x2,y2[,label]; .txt:
                                x1 y1 x2 y2 [label]), relative to the data root
@@ -664,7 +664,7 @@ impl DatasetConfig {
             }
         };
         use DatasetKind::*;
-        only_for("split", self.split.is_some(), &[Hopef])?;
+        only_for("split", self.split.is_some(), &[Hopef, Synthetic])?;
         only_for("categories", self.categories.is_some(), &[Hopef, Synthetic])?;
         only_for("preset", self.preset.is_some(), &[Synthetic])?;
         only_for(

@@ -134,10 +134,12 @@ pub fn load_scenes(
                 {
                     continue;
                 }
+                let split = dataset.split.map(hopef::Split::from);
                 refs.extend(
                     preset
                         .indices()
                         .filter(|&i| in_range(dataset.index_range, i))
+                        .filter(|i| split.map_or(true, |s| s.indices().contains(i)))
                         .map(|i| (category, i)),
                 );
             }
