@@ -40,8 +40,10 @@ pub fn t_linkage<'py>(
     min_cluster_size: i64,
 ) -> PyResult<Bound<'py, PyArray1<i32>>> {
     let min_cluster_size = count(min_cluster_size, "min_cluster_size")?;
-    let (values, _, m) = matrix(preferences, "preferences")?;
-    let rows: Vec<Vec<f64>> = values.chunks(m.max(1)).map(<[f64]>::to_vec).collect();
+    let (values, n, m) = matrix(preferences, "preferences")?;
+    let rows: Vec<Vec<f64>> = (0..n)
+        .map(|i| values[i * m..(i + 1) * m].to_vec())
+        .collect();
     let prefs =
         PreferenceMatrix::from_rows(&rows).map_err(|e| value_error(format!("preferences: {e}")))?;
     let clustering = py.detach(|| clustering::t_linkage(&prefs, min_cluster_size));
