@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import sctl
-from conftest import write_csv
+from conftest import shared_path, write_csv
 
 ADELAIDE_SETS = [[1e-3, 1.0, 1e-3, 1.0], [5e-4, 1.0, 5e-4, 1.0], [1e-4, 1.0, 1e-4, 1.0], [5e-4, 2.0, 5e-4, 2.0]]
 
@@ -73,6 +73,25 @@ def test_answers_equal_the_command_line(cli, tmp_path):
             assert math.isnan(robust["f1"][k])
     assert "ok" in statuses and len(statuses) > 1, statuses  # both kinds of answer compared
     assert np.isnan(closed).any() and not np.isnan(closed).all()
+
+
+def test_poselib_fixture_answers_equal_the_command_line(cli):
+    """shared/fixtures/focal/poselib_focals.csv row by row, each with its own
+    prior, weights and max_iters, through `sctl focal` and the package."""
+    path = shared_path("fixtures", "focal", "poselib_focals.csv")
+    rows = list(csv.DictReader(io.StringIO(cli("focal", "--input", path))))
+    fixture = list(csv.DictReader(path.open()))
+    assert len(rows) == len(fixture) > 100
+    for row, case in zip(rows, fixture):
+        F = np.array([float(case[f"F{i}{j}"]) for i in range(3) for j in range(3)]).reshape(3, 3)
+        weights = [float(case[k]) for k in ("w_f1", "w_pp1", "w_f2", "w_pp2")]
+        ours = sctl.focals_from_fundamental(F, focal_prior=float(case["f_prior"]), weight_sets=[weights],
+                                            max_iters=int(case["max_iters"]))
+        assert (ours["status"] == "ok") == (row["iter_status"] == "ok"), (case["id"], ours["status"])
+        if ours["status"] == "ok":
+            assert (ours["f1"], ours["f2"], ours["iterations"]) == (
+                float(row["iter_f1"]), float(row["iter_f2"]), int(row["iterations"]))
+        np.testing.assert_array_equal(sctl.bougnoux(F), [cell(row["bougnoux_f1"]), cell(row["bougnoux_f2"])])
 
 
 def test_multi_start_keeps_the_fewest_iterations():
