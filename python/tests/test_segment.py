@@ -1,0 +1,177 @@
+"""sctl.segment: the labels of `sctl segment` on the same input and seed, every
+[pipeline] key as a keyword, errors naming the key."""
+
+import re
+import threading
+
+import numpy as np
+import pytest
+
+import sctl
+from conftest import write_csv
+
+SEED = 2024
+# Small M keeps the comparison fast; the variants exercise keys of every type.
+VARIANTS = [
+    {},
+    {"method": "baseline"},
+    {"tau_range": 0.25, "weight_sets": "hopef", "max_iters": 120, "focal_failure": "prior",
+     "truncate_focals": True, "local_test": "reference-code", "eight_point": "plain"},
+    {"linkage": "j-linkage", "thr_px": 3, "min_cluster_size": 10, "irls_iters": 3,
+     "weight_sets": [[1e-3, 1.0, 1e-3, 1.0], [1e-4, 2.0, 1e-4, 2.0]]},
+]
+
+
+def toml_value(v):
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, str):
+        return f'"{v}"'
+    if isinstance(v, (list, tuple)):
+        return "[" + ", ".join(toml_value(x) for x in v) + "]"
+    return repr(v)
+
+
+def cli_segment(cli, tmp_path, scene, params):
+    """Labels and summary line of `sctl segment` on the scene's matches."""
+    matches = write_csv(tmp_path / "matches.csv", ["x1", "y1", "x2", "y2"],
+                        np.hstack([scene["x1"], scene["x2"]]))
+    config = tmp_path / "config.toml"
+    config.write_text("[pipeline]\n" + "".join(f"{k} = {toml_value(v)}\n" for k, v in params.items()))
+    labels_file = tmp_path / "labels.txt"
+    w, h = scene["image_size"]
+    summary = cli("segment", "--matches", matches, "--width", w, "--height", h,
+                  "--config", config, "--out", labels_file)
+    return np.loadtxt(labels_file, dtype=np.int64, ndmin=1), summary
+
+
+@pytest.mark.parametrize("variant", range(len(VARIANTS)))
+def test_labels_equal_the_command_line(cli, synthetic, tmp_path, variant):
+    scenes = synthetic if variant == 0 else synthetic[:1]
+    for i, folder in enumerate(scenes):
+        scene = sctl.load_hopef(folder)
+        params = {"num_samples": 300, "seed": SEED + i, **VARIANTS[variant]}
+        expected, summary = cli_segment(cli, tmp_path, scene, params)
+        seg = sctl.segment(scene["x1"], scene["x2"], scene["image_size"], **params)
+        assert seg.labels.dtype == np.int32
+        np.testing.assert_array_equal(seg.labels, expected, err_msg=f"{folder}, {params}")
+        counts = re.search(r"(\d+) motion\(s\) found, (\d+) outliers; hypotheses kept (\d+) of (\d+) generated "
+                           r"\((\d+) refined\)", summary).groups()
+        assert tuple(map(int, counts)) == (seg.motions, seg.outliers, seg.kept, seg.generated, seg.refined)
+        peak = re.search(r"f_peak (\S+) px", summary)
+        assert (seg.f_peak is None) == (peak is None)
+        if peak:
+            assert f"{seg.f_peak:.1f}" == peak.group(1)
+
+
+def test_result_is_consistent(synthetic):
+    scene = sctl.load_hopef(synthetic[0])
+    seg = sctl.segment(scene["x1"], scene["x2"], scene["image_size"], num_samples=300)
+    labels = seg.labels
+    assert len(seg) == len(labels) == len(scene["x1"])
+    assert seg.outliers == int(np.sum(labels == -1))
+    assert seg.motions == len(seg.clusters) == len(set(labels[labels >= 0].tolist()))
+    for label, size, F in seg.clusters:
+        assert size == int(np.sum(labels == label))
+        assert F is None or F.shape == (3, 3)
+    assert seg.generated == 300 >= seg.refined >= seg.local_ok >= seg.kept
+    assert len(seg.hypothesis_status) == 300 == len(seg.hypothesis_focals)
+    assert seg.hypothesis_status.count("kept") == seg.kept
+    assert set(seg.timings) == {"sampling", "refine", "focal", "consensus", "preferences",
+                                "clustering", "cluster_fit", "total"}
+    assert seg.consensus["f_peak"] == seg.f_peak
+    assert seg.principal_point == ((scene["image_size"][0] - 1) / 2, (scene["image_size"][1] - 1) / 2)
+    assert seg.focal_prior == max(scene["image_size"])
+    assert seg.params == {**sctl.default_params(), "num_samples": 300}
+    assert f"motions={seg.motions}" in repr(seg) and f"outliers={seg.outliers}" in repr(seg)
+
+
+def test_cluster_f_fits_its_points_in_centred_coordinates(synthetic):
+    scene = sctl.load_hopef(synthetic[0])
+    seg = sctl.segment(scene["x1"], scene["x2"], scene["image_size"], num_samples=300)
+    pp = np.array(seg.principal_point)
+    for label, _, F in seg.clusters:
+        inliers = seg.labels == label
+        d = sctl.sampson_distances(F, scene["x1"][inliers] - pp, scene["x2"][inliers] - pp)
+        assert np.median(d) < 2.5  # thr_px
+
+
+def test_same_seed_same_labels_and_principal_point_is_used(synthetic):
+    scene = sctl.load_hopef(synthetic[1])
+    args = (scene["x1"], scene["x2"], scene["image_size"])
+    a = sctl.segment(*args, num_samples=200, seed=5)
+    b = sctl.segment(*args, num_samples=200, seed=5)
+    np.testing.assert_array_equal(a.labels, b.labels)
+    c = sctl.segment(*args, num_samples=200, seed=5, principal_point=scene["principal_point"],
+                     focal_prior=900.0)
+    assert c.principal_point == tuple(scene["principal_point"]) and c.focal_prior == 900.0
+
+
+def test_docstring_lists_every_key_with_its_default():
+    doc = sctl.segment.__doc__
+    assert "seed=12345" in sctl.segment.__text_signature__
+    for key, value in sctl.default_params().items():
+        if key == "seed":
+            continue
+        shown = {True: "True", False: "False"}.get(value) if isinstance(value, bool) else (
+            f'"{value}"' if isinstance(value, str) else repr(value))
+        assert re.search(rf"- {key} = {re.escape(shown)}\s", doc), (key, shown)
+
+
+@pytest.mark.parametrize("kwargs, key", [
+    ({"num_sample": 300}, "num_sample"),
+    ({"num_samples": 1.5}, "num_samples"),
+    ({"num_samples": 0}, "num_samples"),
+    ({"method": "calibrated"}, "method"),
+    ({"thr_px": float("nan")}, "thr_px"),
+    ({"tau_diff": -1}, "tau_diff"),
+    ({"refine": "yes"}, "refine"),
+    ({"weight_sets": [[1, 2, 3]]}, "weight_sets"),
+    ({"weight_sets": "kitti"}, "weight_sets"),
+    ({"seed": -1}, "seed"),
+    ({"focal_solver": "external"}, "external"),
+])
+def test_bad_parameters_raise_value_error_naming_the_key(synthetic, kwargs, key):
+    scene = sctl.load_hopef(synthetic[0])
+    with pytest.raises(ValueError, match=f"`?{key}"):
+        sctl.segment(scene["x1"], scene["x2"], scene["image_size"], **kwargs)
+
+
+def test_bad_input_raises_value_error():
+    rng = np.random.default_rng(0)
+    x = rng.uniform(0, 100, (20, 2))
+    cases = [
+        ((x[:, :1], x, (100, 100)), "x1: expected an \\(N, 2\\) array"),
+        ((x, x[:10], (100, 100)), "x1 has 20 points but x2 has 10"),
+        ((x[:5], x[:5], (100, 100)), "5 correspondences"),
+        ((x, np.where(np.arange(40).reshape(20, 2) == 7, np.nan, x), (100, 100)), "x2: non-finite value NaN at row 3"),
+        ((x, x, (100, 0)), "image_size"),
+        ((x, [["a", "b"]] * 20, (100, 100)), "x2: not an array of numbers"),
+    ]
+    for args, message in cases:
+        with pytest.raises(ValueError, match=message):
+            sctl.segment(*args)
+    with pytest.raises(ValueError, match="principal_point"):
+        sctl.segment(x, x, (100, 100), principal_point=(1.0, 2.0, 3.0))
+    with pytest.raises(ValueError, match="focal_prior"):
+        sctl.segment(x, x, (100, 100), focal_prior=-5.0)
+
+
+def test_the_gil_is_released_while_segmenting(synthetic):
+    scene = sctl.load_hopef(synthetic[0])
+    started, done = threading.Event(), threading.Event()
+
+    def work():
+        started.set()
+        sctl.segment(scene["x1"], scene["x2"], scene["image_size"], num_samples=3000)
+        done.set()
+
+    thread = threading.Thread(target=work)
+    thread.start()
+    started.wait()
+    spins = 0
+    while not done.is_set():
+        spins += 1  # runs only while the segmentation does not hold the GIL
+    thread.join()
+    # Holding the GIL for the whole call would leave a few hundred spins at most.
+    assert spins > 10_000
