@@ -570,7 +570,7 @@ pub fn console_summary(
     }
     let mut out = aligned(&rows);
     let mut stages: Vec<Vec<String>> = vec![std::iter::once("mean s/scene by stage")
-        .chain(TIMING_STAGES)
+        .chain(StageTimings::NAMES)
         .map(String::from)
         .collect()];
     for combo in &plan.combinations {
@@ -588,18 +588,6 @@ pub fn console_summary(
     }
     out
 }
-
-/// Short names of the stages of [`StageTimings::values`].
-const TIMING_STAGES: [&str; 8] = [
-    "sampling",
-    "refine",
-    "focal",
-    "consensus",
-    "preferences",
-    "clustering",
-    "cluster_fit",
-    "total",
-];
 
 /// Rows as left-aligned columns separated by two spaces.
 fn aligned(rows: &[Vec<String>]) -> String {
