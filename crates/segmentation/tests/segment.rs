@@ -1,6 +1,6 @@
 //! Algorithm 1 end to end on synthetic scenes of the `quick` preset.
 
-use datasets::synthetic::{generate_hopef_scene, Preset};
+use datasets::synthetic::Preset;
 use datasets::Scene;
 use metrics::ClusteringMetrics;
 use segmentation::{
@@ -9,7 +9,9 @@ use segmentation::{
 };
 
 fn quick_scene(category: u32, index: u32) -> Scene {
-    generate_hopef_scene(&Preset::Quick.params(), 1, category, index)
+    Preset::Quick
+        .params()
+        .generate_scene(1, category, index)
         .unwrap()
         .scene
 }
