@@ -15,28 +15,7 @@ T-Linkage baseline is ``method="baseline"``.
 Every computation runs in Rust without the GIL.
 """
 
-from ._sctl import (
-    Segmentation,
-    bougnoux,
-    default_params,
-    focals_from_fundamental,
-    load_adelaidermf,
-    load_hopef,
-    metrics,
-    sampson_distances,
-    segment,
-    t_linkage,
-)
+from . import _sctl
+from ._sctl import *  # noqa: F403 (the names below)
 
-__all__ = [
-    "Segmentation",
-    "bougnoux",
-    "default_params",
-    "focals_from_fundamental",
-    "load_adelaidermf",
-    "load_hopef",
-    "metrics",
-    "sampson_distances",
-    "segment",
-    "t_linkage",
-]
+__all__ = sorted(name for name in vars(_sctl) if not name.startswith("_"))

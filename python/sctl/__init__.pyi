@@ -1,15 +1,29 @@
 """Type stubs of the sctl package (the compiled module sctl._sctl)."""
 
 import os
-from typing import Any, Dict, List, Literal, Optional, Sequence, Tuple, TypedDict, Union
+from typing import Any, Dict, List, Literal, Optional, Sequence, Tuple, TypedDict, Union, final
 
 import numpy as np
 import numpy.typing as npt
+
+__all__ = [
+    "Segmentation",
+    "bougnoux",
+    "default_params",
+    "focals_from_fundamental",
+    "load_adelaidermf",
+    "load_hopef",
+    "metrics",
+    "sampson_distances",
+    "segment",
+    "t_linkage",
+]
 
 _Points = npt.ArrayLike  # (N, 2) pixel coordinates
 _Matrix = npt.ArrayLike  # (3, 3) or (K, 3, 3)
 _WeightSets = Union[Literal["adelaidermf", "hopef"], Sequence[Sequence[float]]]
 
+@final
 class Segmentation:
     """The result of ``segment``: labels and what is needed to trust them."""
 
