@@ -146,6 +146,7 @@ def sampson_distances(
 
 class _Metrics(TypedDict):
     me: float
+    me_all: float
     acc: float
     fnr: float
     pur: float
@@ -153,7 +154,7 @@ class _Metrics(TypedDict):
     nmi: float
 
 def metrics(pred: npt.ArrayLike, gt: npt.ArrayLike) -> _Metrics:
-    """ME, ACC, FNR, PUR, ARI, NMI of predicted labels against the ground truth."""
+    """ME, ME over all points, ACC, FNR, PUR, ARI, NMI of predicted labels against the ground truth."""
 
 class _Scene(TypedDict):
     name: str

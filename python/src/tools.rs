@@ -102,7 +102,10 @@ pub fn sampson_distances<'py>(
 /// Returns
 /// -------
 /// dict
-///     ``me`` (misclassification error), ``acc`` (1 - me), ``fnr`` (false
+///     ``me`` (misclassification error, ground-truth outliers excluded, a
+///     predicted outlier wrong: the thesis's), ``me_all`` (over all points,
+///     outliers a class of their own: the multi-model fitting literature's),
+///     ``acc`` (1 - me), ``fnr`` (false
 ///     negative rate), ``pur`` (purity), ``ari`` (adjusted Rand index) and
 ///     ``nmi`` (normalised mutual information), as fractions.
 #[pyfunction]
@@ -116,6 +119,7 @@ pub fn metrics<'py>(
     let dict = PyDict::new(py);
     for (key, value) in [
         ("me", m.me),
+        ("me_all", m.me_all),
         ("acc", m.acc),
         ("fnr", m.fnr),
         ("pur", m.pur),

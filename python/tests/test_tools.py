@@ -76,6 +76,10 @@ def test_metrics_equal_the_command_line(cli, tmp_path):
     # A perfect segmentation under other ids.
     perfect = sctl.metrics([5, 5, 9, 9, -1], [1, 1, 2, 2, 0])
     assert (perfect["me"], perfect["acc"], perfect["fnr"], perfect["pur"], perfect["ari"]) == (0, 1, 0, 1, 1)
+    assert perfect["me_all"] == 0
+    # An outlier absorbed into a cluster is an error over all points only.
+    absorbed = sctl.metrics([2, 2, 2], [1, 1, 0])
+    assert (absorbed["me"], absorbed["me_all"]) == (0, pytest.approx(1 / 3))
 
 
 def test_metrics_reject_bad_labels():

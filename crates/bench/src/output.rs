@@ -377,6 +377,7 @@ mod tests {
             n: 10,
             metrics: Some(ClusteringMetrics {
                 me: 0.1,
+                me_all: 0.15,
                 acc: 0.9,
                 fnr: 0.2,
                 pur: 0.95,

@@ -49,6 +49,12 @@ fn prints_every_metric_as_one_json_object() {
     assert!((v["acc"].as_f64().unwrap() - 5.0 / 6.0).abs() < 1e-12);
     // Cluster 3 = {2, 2, 0}: purity (3 + 2) / 6.
     assert!((v["pur"].as_f64().unwrap() - 5.0 / 6.0).abs() < 1e-12);
+    // All 8 points: the rejected outlier is right, the rejected motion-2
+    // point and the outlier in cluster 3 are wrong.
+    assert!(
+        (v["me_all"].as_f64().unwrap() - 2.0 / 8.0).abs() < 1e-12,
+        "{v}"
+    );
     let lib = bench::metrics::ClusteringMetrics::compute(
         &[7, 7, 7, 3, 3, -1, -1, 3],
         &[1, 1, 1, 2, 2, 2, 0, 0],

@@ -13,7 +13,8 @@ use bench::metrics::{ClusteringMetrics, MetricsError};
     after_help = "Definitions as in method.md \"Metrics\" (Hungarian matching for ME and FNR).\n\n\
 Both files hold whitespace-separated integer labels, one per point, in the same order \
 (spaces, tabs and newlines all separate). Prints one JSON object with the fractions \
-me (misclassification error), acc (1 - me), fnr (false-negative rate), pur (purity), \
+me (misclassification error, ground-truth outliers excluded, a predicted outlier wrong: the thesis's), \
+me_all (over all points, outliers a class of their own: the multi-model fitting literature's), acc (1 - me), fnr (false-negative rate), pur (purity), \
 ari (adjusted Rand index) and nmi (normalised mutual information, arithmetic mean)."
 )]
 pub struct Args {
