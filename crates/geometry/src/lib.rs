@@ -18,13 +18,17 @@
 
 #![warn(missing_docs)]
 
+mod action;
 pub mod eight_point;
 pub mod error;
 pub mod irls;
 mod linalg;
 mod mad;
+mod minimal;
 pub mod polish;
+mod poly;
 pub mod sampson;
+pub mod seven_point;
 pub mod types;
 
 pub use eight_point::{
@@ -41,4 +45,5 @@ pub use sampson::{
     frob_distance, sampson_distance, sampson_distance_signed, sampson_distance_squared,
     sampson_distances_squared, sampson_residuals_signed, symmetric_epipolar_distance,
 };
+pub use seven_point::{seven_point, SEVEN_POINT_SAMPLE};
 pub use types::{Correspondences, FundamentalMatrix};
