@@ -21,6 +21,7 @@
 mod action;
 pub mod eight_point;
 pub mod error;
+pub mod five_point;
 pub mod irls;
 mod linalg;
 mod mad;
@@ -36,6 +37,7 @@ pub use eight_point::{
     enforce_rank2, MIN_POINTS, RANK_TOLERANCE,
 };
 pub use error::GeometryError;
+pub use five_point::{five_point, FIVE_POINT_SAMPLE};
 pub use irls::{
     median_absolute_deviation, median_in_place, refine_irls_tukey, tukey_weight, IrlsFit,
     IrlsParams, IrlsSummary, IrlsWorkspace, RefinedModel, MAD_TO_SIGMA,
