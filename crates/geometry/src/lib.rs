@@ -30,6 +30,7 @@ pub mod polish;
 mod poly;
 pub mod sampson;
 pub mod seven_point;
+pub mod six_point_focal;
 pub mod types;
 
 pub use eight_point::{
@@ -48,4 +49,5 @@ pub use sampson::{
     sampson_distances_squared, sampson_residuals_signed, symmetric_epipolar_distance,
 };
 pub use seven_point::{seven_point, SEVEN_POINT_SAMPLE};
+pub use six_point_focal::{six_point_focal, FocalSolution, SIX_POINT_SAMPLE};
 pub use types::{Correspondences, FundamentalMatrix};
