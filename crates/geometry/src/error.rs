@@ -96,6 +96,22 @@ pub enum GeometryError {
         /// The valid range, in words.
         requirement: &'static str,
     },
+    /// A minimal solver was given a sample of the wrong size.
+    #[error("minimal solver needs exactly {needed} correspondences, {got} given")]
+    SampleSize {
+        /// Number of correspondences given.
+        got: usize,
+        /// Number the solver needs.
+        needed: usize,
+    },
+    /// A bearing vector of the 5-point solver is zero.
+    #[error("zero bearing vector in image {image} at index {index}")]
+    ZeroBearing {
+        /// The image, 1 or 2.
+        image: usize,
+        /// Index of the correspondence.
+        index: usize,
+    },
     /// An intermediate quantity overflowed (coordinates too large for f64).
     #[error("non-finite value in {0} (coordinates too large)")]
     Overflow(&'static str),

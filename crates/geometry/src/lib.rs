@@ -18,13 +18,19 @@
 
 #![warn(missing_docs)]
 
+mod action;
 pub mod eight_point;
 pub mod error;
+pub mod five_point;
 pub mod irls;
 mod linalg;
 mod mad;
+mod minimal;
 pub mod polish;
+mod poly;
 pub mod sampson;
+pub mod seven_point;
+pub mod six_point_focal;
 pub mod types;
 
 pub use eight_point::{
@@ -32,6 +38,7 @@ pub use eight_point::{
     enforce_rank2, MIN_POINTS, RANK_TOLERANCE,
 };
 pub use error::GeometryError;
+pub use five_point::{five_point, FIVE_POINT_SAMPLE};
 pub use irls::{
     median_absolute_deviation, median_in_place, refine_irls_tukey, tukey_weight, IrlsFit,
     IrlsParams, IrlsSummary, IrlsWorkspace, RefinedModel, MAD_TO_SIGMA,
@@ -41,4 +48,6 @@ pub use sampson::{
     frob_distance, sampson_distance, sampson_distance_signed, sampson_distance_squared,
     sampson_distances_squared, sampson_residuals_signed, symmetric_epipolar_distance,
 };
+pub use seven_point::{seven_point, SEVEN_POINT_SAMPLE};
+pub use six_point_focal::{six_point_focal, FocalSolution, SIX_POINT_SAMPLE};
 pub use types::{Correspondences, FundamentalMatrix};
