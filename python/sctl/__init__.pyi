@@ -97,6 +97,8 @@ def segment(
     irls_polish: bool = False,
     refine: bool = True,
     eight_point: Literal["normalized", "plain"] = "normalized",
+    minimal_solver: Literal["eight-point", "seven-point", "five-point", "six-point-focal"] = "eight-point",
+    minimal_solutions: Literal["best", "all"] = "best",
     focal_solver: Literal["kocur", "bougnoux"] = "kocur",
     weight_sets: _WeightSets = "adelaidermf",
     max_iters: int = 100,

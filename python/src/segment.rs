@@ -46,6 +46,8 @@ use std::fmt::Write as _;
 ///     - irls_polish = False         (LM polish of each sample's F first)
 ///     - refine = True               (IRLS-Tukey refinement of each sample's F)
 ///     - eight_point = "normalized"  ("normalized" or "plain")
+///     - minimal_solver = "eight-point"  ("eight-point", "seven-point", "five-point" or "six-point-focal")
+///     - minimal_solutions = "best"  ("best": most matches within thr_px, or "all")
 ///     - focal_solver = "kocur"      ("kocur" or "bougnoux")
 ///     - weight_sets = "adelaidermf" ("adelaidermf", "hopef" or [[w_f1, w_pp1, w_f2, w_pp2], ...])
 ///     - max_iters = 100             (iteration cap of the robust focal solver)

@@ -10,8 +10,8 @@ use serde::de::{self, Deserializer};
 use serde::{Deserialize, Serialize, Serializer};
 
 pub use segmentation::{
-    EightPoint, FocalSolver, IrlsFit, Linkage, LocalTest, Method, OnFailure, ParamError, Params,
-    WeightPreset, WeightSets,
+    EightPoint, FocalSolver, IrlsFit, Linkage, LocalTest, Method, MinimalSolutions, MinimalSolver,
+    OnFailure, ParamError, Params, WeightPreset, WeightSets,
 };
 use std::path::{Path, PathBuf};
 use thiserror::Error;
@@ -44,6 +44,8 @@ pub struct PipelineConfig {
     pub irls_polish: bool,
     pub refine: bool,
     pub eight_point: EightPoint,
+    pub minimal_solver: MinimalSolver,
+    pub minimal_solutions: MinimalSolutions,
     pub focal_solver: FocalSolver,
     /// The CSV of `focal_solver = "external"` (see [`crate::focal_file`]),
     /// relative to the working directory; `{seed}` is replaced by the seed.
@@ -72,7 +74,7 @@ impl Default for PipelineConfig {
 
 /// The keys of [`PipelineConfig`] in declaration order: the order of the
 /// swept-parameter columns in every output file.
-pub const PIPELINE_KEYS: [&str; 23] = [
+pub const PIPELINE_KEYS: [&str; 25] = [
     "method",
     "num_samples",
     "mss_size",
@@ -86,6 +88,8 @@ pub const PIPELINE_KEYS: [&str; 23] = [
     "irls_polish",
     "refine",
     "eight_point",
+    "minimal_solver",
+    "minimal_solutions",
     "focal_solver",
     "focal_file",
     "weight_sets",
@@ -115,6 +119,8 @@ impl PipelineConfig {
             irls_polish: p.irls_polish,
             refine: p.refine,
             eight_point: p.eight_point,
+            minimal_solver: p.minimal_solver,
+            minimal_solutions: p.minimal_solutions,
             focal_solver: p.focal_solver,
             focal_file: String::new(),
             weight_sets: p.weight_sets,
@@ -144,6 +150,8 @@ impl PipelineConfig {
             irls_polish: self.irls_polish,
             refine: self.refine,
             eight_point: self.eight_point,
+            minimal_solver: self.minimal_solver,
+            minimal_solutions: self.minimal_solutions,
             focal_solver: self.focal_solver,
             weight_sets: self.weight_sets.clone(),
             max_iters: self.max_iters,
@@ -404,6 +412,9 @@ EXPERIMENT FILE (TOML)
   irls_polish = false          LM polish of each sample's F first (reference code)
   refine = true                false: raw minimal-sample F (ablation)
   eight_point = \"normalized\"   normalized | plain
+  minimal_solver = \"eight-point\"   eight-point | seven-point | five-point (E at the
+                               focal prior) | six-point-focal (shared unknown f)
+  minimal_solutions = \"best\"   best (most matches within thr_px) | all
   focal_solver = \"kocur\"       kocur | bougnoux | external (read from focal_file)
   focal_file = \"f{seed}.csv\"   focal_solver = \"external\": CSV of scene,hypothesis,f1,f2
   weight_sets = \"adelaidermf\"  adelaidermf | hopef | [[w_f1, w_pp1, w_f2, w_pp2], ...]

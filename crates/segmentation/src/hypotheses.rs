@@ -1,7 +1,8 @@
-//! Steps 1–3 of Algorithm 1: minimal samples, their 8-point fits and the
-//! IRLS-Tukey refinement of each.
+//! Steps 1–3 of Algorithm 1: minimal samples, their fits (8-point, or
+//! another minimal solver) and the IRLS-Tukey refinement of each.
 
-use crate::{minimal_sample, EightPoint, Matches, Params, SegmentationError};
+use crate::minimal::{candidates, choose, consensus};
+use crate::{minimal_sample, EightPoint, Matches, MinimalSolver, Params, SegmentationError};
 use geometry::{eight_point_normalized, eight_point_plain, Correspondences, IrlsWorkspace};
 use nalgebra::Matrix3;
 use rayon::prelude::*;
@@ -14,7 +15,10 @@ use std::time::Instant;
 pub struct GeneratedHypotheses {
     /// The correspondences in principal-point-centred coordinates.
     pub points: Correspondences,
-    /// Whether hypothesis `j`'s minimal sample gave an 8-point fit.
+    /// Whether hypothesis `j`'s minimal sample gave a fit. With the
+    /// 8-point (or one solution per sample) hypothesis `j` is sample `j`;
+    /// with `minimal_solutions = "all"` a sample gives one hypothesis per
+    /// solution, or one unfitted hypothesis when it has none.
     pub fitted: Vec<bool>,
     /// The model of hypothesis `j` (refined, or the raw fit when `refine`
     /// is off), centred coordinates; None when the fit or the refinement
@@ -70,7 +74,10 @@ pub fn generate_hypotheses(
     let points = centred_points(matches, params)?;
 
     let t = Instant::now();
-    let fits = fit_minimal_samples(&points, params);
+    let fits = match params.minimal_solver {
+        MinimalSolver::EightPoint => fit_minimal_samples(&points, params),
+        _ => solve_minimal_samples(&points, params, matches.focal_prior),
+    };
     let sampling_seconds = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
@@ -85,9 +92,11 @@ pub fn generate_hypotheses(
     })
 }
 
-/// A minimal sample and its 8-point fit.
+/// A minimal sample's fit and the matches its refinement starts from: the
+/// sample itself for the 8-point, the matches within `thr_px` of the fit
+/// for the smaller minimal solvers (a weighted 8-point needs 8).
 struct SampleFit {
-    sample: Vec<usize>,
+    start: Vec<usize>,
     f: Matrix3<f64>,
 }
 
@@ -107,9 +116,43 @@ fn fit_minimal_samples(points: &Correspondences, params: &Params) -> Vec<Option<
             .ok()?;
             f.iter()
                 .all(|v| v.is_finite())
-                .then_some(SampleFit { sample, f })
+                .then_some(SampleFit { start: sample, f })
         })
         .collect()
+}
+
+/// Steps 1–2 with a minimal solver other than the 8-point: each sample's
+/// solutions, chosen by [`Params::minimal_solutions`]; a sample without a
+/// solution gives one unfitted hypothesis. `focal` is the five-point's
+/// `K(f)`.
+fn solve_minimal_samples(
+    points: &Correspondences,
+    params: &Params,
+    focal: f64,
+) -> Vec<Option<SampleFit>> {
+    let (n, size) = (points.len(), params.sample_size());
+    let per_sample: Vec<Vec<Option<SampleFit>>> = (0..params.num_samples)
+        .into_par_iter()
+        .map(|j| {
+            let sample = minimal_sample(params.seed, j, n, size);
+            let solutions = match points.subset(&sample) {
+                Ok(subset) => candidates(params.minimal_solver, &subset, focal),
+                Err(_) => Vec::new(),
+            };
+            let chosen = choose(params.minimal_solutions, points, solutions, params.thr_px);
+            if chosen.is_empty() {
+                return vec![None];
+            }
+            chosen
+                .into_iter()
+                .map(|f| {
+                    let start = consensus(points, &f, params.thr_px);
+                    Some(SampleFit { start, f })
+                })
+                .collect()
+        })
+        .collect();
+    per_sample.into_iter().flatten().collect()
 }
 
 /// Step 3: IRLS-Tukey from each fit (or the raw fit when `refine` is off).
@@ -125,7 +168,7 @@ fn refine_fits(
     fits.par_iter()
         .map_init(IrlsWorkspace::new, |ws, fit| {
             let fit = fit.as_ref()?;
-            let refined = ws.run(points, &fit.sample, Some(&fit.f), &irls).ok()?;
+            let refined = ws.run(points, &fit.start, Some(&fit.f), &irls).ok()?;
             Some(refined.f)
         })
         .collect()

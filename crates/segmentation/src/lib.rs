@@ -31,6 +31,7 @@ mod filter;
 mod focals;
 mod hypotheses;
 mod input;
+mod minimal;
 mod params;
 mod result;
 mod sampling;
@@ -46,7 +47,8 @@ pub use hypotheses::{centred_points, generate_hypotheses, GeneratedHypotheses};
 pub use input::{image_centre, Matches};
 pub use params::{
     EightPoint, FocalKey, FocalSolver, HypothesisKey, IrlsFit, Linkage, LocalTest, Method,
-    OnFailure, ParamError, Params, WeightPreset, WeightSets, PARAM_KEYS,
+    MinimalSolutions, MinimalSolver, OnFailure, ParamError, Params, WeightPreset, WeightSets,
+    PARAM_KEYS,
 };
 pub use result::{
     ClusterModel, Hypothesis, HypothesisCounts, HypothesisStatus, Segmentation, StageTimings,

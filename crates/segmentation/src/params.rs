@@ -42,6 +42,61 @@ pub enum EightPoint {
     Plain,
 }
 
+/// The minimal solver of Algorithm 1 step 2: how each sample becomes a
+/// hypothesis F.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
+pub enum MinimalSolver {
+    /// The 8-point algorithm on `mss_size` matches, in the variant of
+    /// [`Params::eight_point`] (the thesis).
+    EightPoint,
+    /// The 7-point algorithm (Hartley & Zisserman §11.1.2): up to 3 F per
+    /// sample of 7, uncalibrated.
+    SevenPoint,
+    /// The 5-point essential-matrix solver (Nistér 2004; Stewénius, Engels,
+    /// Nistér 2006) in the coordinates `K(f)⁻¹ x` with `f` the focal prior:
+    /// up to 10 E per sample of 5, each turned into `F = K⁻ᵀ E K⁻¹`. The one
+    /// camera and its focal enter the hypotheses themselves.
+    FivePoint,
+    /// The 6-point solver for relative pose with one unknown focal length
+    /// shared by both views (Stewénius, Nistér, Kahl, Schaffalitzky 2008):
+    /// up to 15 (f, F) per sample of 6.
+    SixPointFocal,
+}
+
+impl MinimalSolver {
+    /// The matches one sample of this solver holds (the 8-point's is
+    /// [`Params::mss_size`]).
+    pub fn sample_size(self, mss_size: usize) -> usize {
+        match self {
+            Self::EightPoint => mss_size,
+            Self::SevenPoint => geometry::SEVEN_POINT_SAMPLE,
+            Self::FivePoint => geometry::FIVE_POINT_SAMPLE,
+            Self::SixPointFocal => geometry::SIX_POINT_SAMPLE,
+        }
+    }
+}
+
+/// Which of a sample's solutions become hypotheses (minimal solvers other
+/// than the 8-point return several).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
+pub enum MinimalSolutions {
+    /// The solution with the most matches within `thr_px` (Sampson), first
+    /// on ties: one hypothesis per sample, as RANSAC scores a sample.
+    Best,
+    /// Every solution: a sample gives as many hypotheses as real solutions.
+    All,
+}
+
 /// The focal-length solver of Algorithm 1 step 4.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 #[cfg_attr(
@@ -186,6 +241,17 @@ pub struct Params {
     /// 8-point variant (step 2): `normalized` (text) or `plain` (reference
     /// code). Default `normalized`.
     pub eight_point: EightPoint,
+    /// Minimal solver of step 2: `eight-point` (the thesis), `seven-point`,
+    /// `five-point` (essential matrices at the focal prior) or
+    /// `six-point-focal` (shared unknown focal). The last three draw their
+    /// own sample size; `mss_size` applies to `eight-point`. Refinement
+    /// (step 3) starts from the matches within `thr_px` of the chosen
+    /// solution instead of the sample. Default `eight-point`.
+    pub minimal_solver: MinimalSolver,
+    /// Which solutions of a minimal sample become hypotheses: `best` (most
+    /// matches within `thr_px`) or `all`. Ignored by `eight-point`, which
+    /// has one. Default `best`.
+    pub minimal_solutions: MinimalSolutions,
     /// Focal solver (step 4): `kocur`, `bougnoux` or `external`. Default
     /// `kocur`.
     pub focal_solver: FocalSolver,
@@ -231,6 +297,8 @@ impl Default for Params {
             irls_polish: false,
             refine: true,
             eight_point: EightPoint::Normalized,
+            minimal_solver: MinimalSolver::EightPoint,
+            minimal_solutions: MinimalSolutions::Best,
             focal_solver: FocalSolver::Kocur,
             weight_sets: WeightSets::Preset(WeightPreset::Adelaidermf),
             max_iters: 100,
@@ -245,7 +313,7 @@ impl Default for Params {
 }
 
 /// The keys of [`Params`] in declaration order.
-pub const PARAM_KEYS: [&str; 22] = [
+pub const PARAM_KEYS: [&str; 24] = [
     "method",
     "num_samples",
     "mss_size",
@@ -259,6 +327,8 @@ pub const PARAM_KEYS: [&str; 22] = [
     "irls_polish",
     "refine",
     "eight_point",
+    "minimal_solver",
+    "minimal_solutions",
     "focal_solver",
     "weight_sets",
     "max_iters",
@@ -309,7 +379,8 @@ impl Params {
             return Err(ParamError::new(
                 "mss_size",
                 format!(
-                    "must be at least 8 (the 8-point algorithm), got {}",
+                    "must be at least 8 (the 8-point algorithm; the other minimal solvers \
+                     draw their own sample size and still refine on 8 or more), got {}",
                     self.mss_size
                 ),
             ));
@@ -366,6 +437,8 @@ impl Params {
             num_samples: self.num_samples,
             mss_size: self.mss_size,
             eight_point: self.eight_point,
+            minimal_solver: self.minimal_solver,
+            minimal_solutions: self.minimal_solutions,
             refine: self.refine,
             thr_px_bits: self.thr_px.to_bits(),
             irls_iters: self.irls_iters,
@@ -374,6 +447,12 @@ impl Params {
             irls_sigma_offset_bits: self.irls_sigma_offset_px.to_bits(),
             irls_polish: self.irls_polish,
         }
+    }
+
+    /// The matches drawn per minimal sample (step 1): `mss_size` for the
+    /// 8-point, the solver's minimal size otherwise.
+    pub fn sample_size(&self) -> usize {
+        self.minimal_solver.sample_size(self.mss_size)
     }
 
     /// The IRLS-Tukey parameters of step 3.
@@ -409,6 +488,8 @@ pub struct HypothesisKey {
     num_samples: usize,
     mss_size: usize,
     eight_point: EightPoint,
+    minimal_solver: MinimalSolver,
+    minimal_solutions: MinimalSolutions,
     refine: bool,
     thr_px_bits: u64,
     irls_iters: usize,

@@ -4,7 +4,7 @@
 use crate::{
     estimate_hypothesis_focals, focal_filter, generate_hypotheses, ClusterModel,
     GeneratedHypotheses, Hypothesis, HypothesisCounts, HypothesisFocals, HypothesisStatus, Matches,
-    Method, Params, Segmentation, SegmentationError, StageTimings,
+    Method, MinimalSolutions, MinimalSolver, Params, Segmentation, SegmentationError, StageTimings,
 };
 use clustering::{Clustering, ClusteringParams};
 use geometry::{eight_point_normalized, sampson_distances_squared, Correspondences};
@@ -129,7 +129,16 @@ fn check_stages(
     focals: Option<&HypothesisFocals>,
 ) -> Result<(), SegmentationError> {
     let (n, m) = (generated.points.len(), generated.models.len());
-    if n != matches.len() || m != params.num_samples {
+    // With every solution of a minimal sample kept, a sample may give
+    // several hypotheses; otherwise there is one per sample.
+    let one_per_sample = params.minimal_solver == MinimalSolver::EightPoint
+        || params.minimal_solutions == MinimalSolutions::Best;
+    let m_matches = if one_per_sample {
+        m == params.num_samples
+    } else {
+        m >= params.num_samples
+    };
+    if n != matches.len() || !m_matches {
         return Err(SegmentationError::StageMismatch(format!(
             "hypotheses generated for {n} points and M = {m}, not {} and {}",
             matches.len(),

@@ -256,3 +256,37 @@ fn degenerate_input_is_reported_not_panicked_on() {
     let err = segment(&quick_scene(1, 900), &bad).unwrap_err().to_string();
     assert!(err.contains("`thr_px`"), "{err}");
 }
+
+#[test]
+fn minimal_solvers_segment_a_synthetic_scene_and_all_solutions_add_hypotheses() {
+    use segmentation::{MinimalSolutions, MinimalSolver};
+    let scene = quick_scene(2, 900);
+    let focal = scene.true_focal.unwrap();
+    let at_truth = matches(&scene).with_focal_prior(focal);
+    for solver in [
+        MinimalSolver::SevenPoint,
+        MinimalSolver::FivePoint,
+        MinimalSolver::SixPointFocal,
+    ] {
+        let best = Params {
+            minimal_solver: solver,
+            ..config(Method::Baseline)
+        };
+        let seg = segmentation::segment(&at_truth, &best).unwrap();
+        assert!(
+            me(&scene, &seg) < 0.05,
+            "{solver:?}: ME {}",
+            me(&scene, &seg)
+        );
+        assert_eq!(seg.counts.generated, 300, "{solver:?}");
+        let all = Params {
+            minimal_solutions: MinimalSolutions::All,
+            ..best
+        };
+        let seg_all = segmentation::segment(&at_truth, &all).unwrap();
+        // The 5-point (up to 10) and 6-point (up to 15) solvers return several
+        // solutions for most samples; the 7-point one or three.
+        assert!(seg_all.counts.generated > 300, "{solver:?}");
+        assert_eq!(seg_all.hypotheses.len(), seg_all.counts.generated);
+    }
+}
