@@ -69,3 +69,16 @@ pub(crate) fn null_basis<const K: usize>(
     }
     Ok(std::array::from_fn(|k| svd.v[order[k]]))
 }
+
+/// Two solutions closer than this (unit-norm matrices, up to sign) are one:
+/// a near-double root can reach the root polish as two candidates.
+const DUPLICATE_DISTANCE: f64 = 1e-10;
+
+/// True when `m` equals one of `found` up to scale and sign, to
+/// [`DUPLICATE_DISTANCE`] (all matrices of unit Frobenius norm).
+pub(crate) fn is_duplicate<'a>(
+    mut found: impl Iterator<Item = &'a Matrix3<f64>>,
+    m: &Matrix3<f64>,
+) -> bool {
+    found.any(|f| (f - m).norm().min((f + m).norm()) < DUPLICATE_DISTANCE)
+}
