@@ -121,9 +121,14 @@ impl Mul for Poly3 {
     /// keeps every exponent at most 3 (a term beyond would be dropped).
     fn mul(self, other: Poly3) -> Poly3 {
         let mut out = Poly3::zero();
-        let right: Vec<_> = other.terms().collect();
+        let mut right = [(0, 0, 0, 0.0); LEN];
+        let mut count = 0;
+        for term in other.terms() {
+            right[count] = term;
+            count += 1;
+        }
         for (a, b, c, u) in self.terms() {
-            for &(d, e, f, v) in &right {
+            for &(d, e, f, v) in &right[..count] {
                 let (i, j, k) = (a + d, b + e, c + f);
                 if i <= MAX_EXP && j <= MAX_EXP && k <= MAX_EXP {
                     out.0[index(i, j, k)] += u * v;
@@ -205,12 +210,15 @@ const SVD_MAX_ITERS: usize = 200;
 /// Up to `steps` Gauss–Newton steps on the overdetermined system
 /// `equations(p) = 0` from `p`, each kept only if it lowers
 /// [`relative_residual`]. Returns the polished point and its residual.
-pub(crate) fn polish_root(equations: &[Poly3], mut p: [f64; 3], steps: usize) -> ([f64; 3], f64) {
+pub(crate) fn polish_root(
+    equations: &[Poly3; 10],
+    mut p: [f64; 3],
+    steps: usize,
+) -> ([f64; 3], f64) {
     let mut residual = relative_residual(equations, p);
     for _ in 0..steps {
-        let n = equations.len();
-        let mut jac = nalgebra::DMatrix::zeros(n, 3);
-        let mut r = nalgebra::DVector::zeros(n);
+        let mut jac = nalgebra::SMatrix::<f64, 10, 3>::zeros();
+        let mut r = nalgebra::SVector::<f64, 10>::zeros();
         for (k, e) in equations.iter().enumerate() {
             let (v, g, _) = e.eval(p[0], p[1], p[2]);
             r[k] = -v;
