@@ -38,7 +38,7 @@ pub const FIVE_POINT_SAMPLE: usize = 5;
 /// Gauss–Newton steps on the ten constraints that polish each root read off
 /// the action matrix (its eigenvalues of a non-normal matrix carry errors
 /// up to ~1e-8; two steps bring them to rounding level).
-const POLISH_STEPS: usize = 2;
+const POLISH_STEPS: usize = 3;
 
 /// Exponents `(x, y, z)` of the 20 monomials of degree ≤ 3, in the
 /// elimination order of Stewénius et al. 2006 (the 10 cubics first).

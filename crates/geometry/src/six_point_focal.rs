@@ -49,7 +49,7 @@ pub const SIX_POINT_SAMPLE: usize = 6;
 
 /// Gauss–Newton steps on the ten equations in `(x, y, w)` that polish each
 /// candidate read off the eigenproblem.
-const POLISH_STEPS: usize = 3;
+const POLISH_STEPS: usize = 6;
 
 /// A candidate is a solution when, after polishing, the ten equations
 /// vanish to this fraction of the magnitude of their terms (see
