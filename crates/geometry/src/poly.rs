@@ -204,9 +204,6 @@ pub(crate) fn relative_residual(equations: &[Poly3], p: [f64; 3]) -> f64 {
     }
 }
 
-/// Iteration cap of the SVD in [`polish_root`].
-const SVD_MAX_ITERS: usize = 200;
-
 /// Up to `steps` Gauss–Newton steps on the overdetermined system
 /// `equations(p) = 0` from `p`, each kept only if it lowers
 /// [`relative_residual`]. Returns the polished point and its residual.
@@ -226,15 +223,14 @@ pub(crate) fn polish_root(
                 jac[(k, j)] = g[j];
             }
         }
-        if !(jac.iter().chain(r.iter()).all(|v: &f64| v.is_finite())) {
+        // Normal equations: the 3 × 3 Gram matrix of a Jacobian that is
+        // well conditioned at a simple root.
+        let Some(delta) = (jac.transpose() * jac).lu().solve(&(jac.transpose() * r)) else {
+            break;
+        };
+        if !delta.iter().all(|v| v.is_finite()) {
             break;
         }
-        let Some(svd) = nalgebra::SVD::try_new(jac, true, true, f64::EPSILON, SVD_MAX_ITERS) else {
-            break;
-        };
-        let Ok(delta) = svd.solve(&r, 1e-14) else {
-            break;
-        };
         let next = [p[0] + delta[0], p[1] + delta[1], p[2] + delta[2]];
         let next_residual = relative_residual(equations, next);
         if next_residual.partial_cmp(&residual) != Some(std::cmp::Ordering::Less) {
