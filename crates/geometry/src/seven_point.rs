@@ -8,7 +8,7 @@
 //! real roots, each a fundamental matrix consistent with the seven matches.
 //!
 //! Numerics: Hartley normalisation of each image first (centroid to the
-//! origin, mean distance `√2`), the null space by a one-sided Jacobi SVD,
+//! origin, mean distance `√2`), the null space by a column-pivoted Householder QR,
 //! and the cubic solved in `t = b/a` or `s = a/b`, whichever has the larger
 //! leading coefficient (so a root at `a = 0` or `b = 0` is never lost), by
 //! the eigenvalues of its companion matrix and two Newton steps.
