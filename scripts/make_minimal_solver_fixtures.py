@@ -22,23 +22,22 @@ solutions of the perturbed sample).
 """
 import json
 import pathlib
+import sys
 
 import numpy as np
 import poselib
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+# The random rotation of the polish fixture's script (same scene family).
+sys.dont_write_bytecode = True
+sys.path.insert(0, str(ROOT / "crates/geometry/tests/fixtures"))
+from make_poselib_refine import rotation  # noqa: E402
 
 SEED = 20251202
 CASES = 40
 NOISE_PX = 0.5
 SCALE_6PT = 1000.0
-OUT = pathlib.Path(__file__).resolve().parent.parent / "crates/geometry/tests/fixtures/minimal_solvers.json"
-
-
-def rotation(rng, max_angle):
-    axis = rng.normal(size=3)
-    axis /= np.linalg.norm(axis)
-    angle = rng.uniform(0.05, max_angle)
-    k = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
-    return np.eye(3) + np.sin(angle) * k + (1 - np.cos(angle)) * k @ k
+OUT = ROOT / "crates/geometry/tests/fixtures/minimal_solvers.json"
 
 
 def skew(t):

@@ -3,7 +3,9 @@
 //!   reported as point-evaluations per second;
 //! * IRLS-Tukey refinement from an 8-point sample at N = 300 (step 3), the
 //!   text's variant and the reference code's (plain refit, polish);
-//! * the three 8-point variants on a minimal sample (step 2).
+//! * the three 8-point variants on a minimal sample (step 2);
+//! * the minimal solvers (5-point E, 6-point shared focal, 7-point F) on
+//!   noisy minimal samples, one sample per call.
 //!
 //! Run with `cargo bench -p geometry --bench geometry`.
 
@@ -12,10 +14,11 @@ mod common;
 
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use geometry::{
-    eight_point_normalized, eight_point_plain, eight_point_weighted, refine_irls_tukey,
-    sampson_distances_squared, sampson_residuals_signed, Correspondences, IrlsParams,
-    IrlsWorkspace,
+    eight_point_normalized, eight_point_plain, eight_point_weighted, five_point, refine_irls_tukey,
+    sampson_distances_squared, sampson_residuals_signed, seven_point, six_point_focal,
+    Correspondences, IrlsParams, IrlsWorkspace,
 };
+use nalgebra::Vector3;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
@@ -126,5 +129,57 @@ fn eight_point(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, sampson_batch, irls, eight_point);
+/// The calibrated bearings of a 5-point sample, image 1 and image 2.
+type BearingPair = (Vec<Vector3<f64>>, Vec<Vector3<f64>>);
+
+fn minimal_solvers(c: &mut Criterion) {
+    let mut group = c.benchmark_group("minimal");
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    // A pool of noisy minimal samples, cycled through.
+    let samples: Vec<_> = (0..32)
+        .map(|_| common::random_scene(&mut rng, 7, 0, 0.5))
+        .collect();
+    let bearings: Vec<BearingPair> = samples
+        .iter()
+        .map(|s| {
+            (0..5)
+                .map(|i| {
+                    let ([a, b], [c, d]) = (s.points.point1(i), s.points.point2(i));
+                    (
+                        Vector3::new(a / s.focal1, b / s.focal1, 1.0),
+                        Vector3::new(c / s.focal2, d / s.focal2, 1.0),
+                    )
+                })
+                .unzip()
+        })
+        .collect();
+    let six: Vec<_> = samples
+        .iter()
+        .map(|s| s.points.subset(&[0, 1, 2, 3, 4, 5]).unwrap())
+        .collect();
+    let mut k = 0;
+    group.bench_function("five_point", |b| {
+        b.iter(|| {
+            k = (k + 1) % bearings.len();
+            five_point(black_box(&bearings[k].0), black_box(&bearings[k].1))
+        })
+    });
+    let mut k = 0;
+    group.bench_function("six_point_focal", |b| {
+        b.iter(|| {
+            k = (k + 1) % six.len();
+            six_point_focal(black_box(&six[k]))
+        })
+    });
+    let mut k = 0;
+    group.bench_function("seven_point", |b| {
+        b.iter(|| {
+            k = (k + 1) % samples.len();
+            seven_point(black_box(&samples[k].points))
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, sampson_batch, irls, eight_point, minimal_solvers);
 criterion_main!(benches);

@@ -7,7 +7,8 @@
 use nalgebra::{DMatrix, DVector};
 
 /// An eigenvalue counts as real when its imaginary part is below this
-/// fraction of `1 + |real part|` (Schur splits a real pair into 1 × 1 blocks
+/// fraction of `1 + |real part|`, both of the matrix scaled to a largest
+/// entry in `[1, 2)` (Schur splits a real pair into 1 × 1 blocks
 /// with a zero imaginary part; a near-double real root can come out as a
 /// conjugate pair with a rounding-level imaginary part, kept once).
 pub(crate) const REAL_TOLERANCE: f64 = 1e-9;
@@ -21,13 +22,21 @@ pub(crate) fn real_eigenvalues(m: &DMatrix<f64>) -> Option<Vec<f64>> {
     if !m.iter().all(|v| v.is_finite()) {
         return None;
     }
-    let schur = nalgebra::Schur::try_new(m.clone(), f64::EPSILON, SCHUR_MAX_ITERS)?;
+    // Exact power-of-two scaling to a largest entry in [1, 2), so that the
+    // iteration cannot overflow; the eigenvalues scale back exactly.
+    let largest = m.iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+    if largest == 0.0 {
+        return Some(vec![0.0; m.nrows()]);
+    }
+    let exponent = (largest.log2().floor() as i32).clamp(-1000, 1000);
+    let (down, up) = (2f64.powi(-exponent), 2f64.powi(exponent));
+    let schur = nalgebra::Schur::try_new(m * down, f64::EPSILON, SCHUR_MAX_ITERS)?;
     let values = schur.complex_eigenvalues();
     Some(
         values
             .iter()
             .filter(|z| z.im >= 0.0 && z.im <= REAL_TOLERANCE * (1.0 + z.re.abs()))
-            .map(|z| z.re)
+            .map(|z| z.re * up)
             .filter(|v| v.is_finite())
             .collect(),
     )

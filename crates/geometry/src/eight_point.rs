@@ -51,7 +51,7 @@
 // Dense kernels on fixed-size arrays read most clearly with explicit indices.
 #![allow(clippy::needless_range_loop)]
 
-use crate::linalg::{jacobi_svd, smallest_eigenpair, symmetric_eigenvalues};
+use crate::linalg::{jacobi_svd, smallest_eigenpair, symmetric_eigenvalues, GivensQr9};
 use crate::{Correspondences, GeometryError};
 use nalgebra::{Matrix3, SVector};
 use std::cmp::Ordering;
@@ -552,62 +552,9 @@ fn smallest_eigenvector(a: &[[f64; 9]; 9]) -> Result<Vector9, GeometryError> {
     Ok(Vector9::from(pair.vector))
 }
 
-/// Incremental QR factorisation of a tall matrix with 9 columns by Givens
-/// rotations: after pushing the rows of `X`, `factor()` is an upper
-/// triangular `R` with `RᵀR = XᵀX` (so the same singular values and right
-/// singular vectors as `X`), computed without forming `XᵀX`.
-#[derive(Debug, Clone, Default)]
-struct GivensQr9 {
-    r: [[f64; 9]; 9],
-}
-
-impl GivensQr9 {
-    /// Folds one row into `R`, zeroing it against the diagonal.
-    fn push(&mut self, mut row: [f64; 9]) {
-        for k in 0..9 {
-            let b = row[k];
-            if b == 0.0 {
-                continue;
-            }
-            let a = self.r[k][k];
-            let h = a.hypot(b);
-            let (c, s) = (a / h, b / h);
-            self.r[k][k] = h;
-            for j in k + 1..9 {
-                let (rj, xj) = (self.r[k][j], row[j]);
-                self.r[k][j] = c * rj + s * xj;
-                row[j] = c * xj - s * rj;
-            }
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    type Matrix9 = nalgebra::SMatrix<f64, 9, 9>;
-
-    #[test]
-    fn givens_qr_reproduces_the_gram_matrix() {
-        let mut qr = GivensQr9::default();
-        let mut gram = Matrix9::zeros();
-        for i in 0..13 {
-            let t = i as f64;
-            let row = design_row(t.sin() * 50.0, t * 3.0 - 7.0, t.cos() * 40.0, 11.0 - t * t);
-            let v = Vector9::from_iterator(row);
-            gram += v * v.transpose();
-            qr.push(row);
-        }
-        let r = Matrix9::from_fn(|i, j| qr.r[i][j]);
-        for i in 0..9 {
-            for j in 0..i {
-                assert_eq!(r[(i, j)], 0.0);
-            }
-        }
-        let rel = (r.transpose() * r - gram).norm() / gram.norm();
-        assert!(rel < 1e-14, "relative error {rel}");
-    }
 
     #[test]
     fn canonical_scale_has_unit_norm_and_positive_largest_entry() {

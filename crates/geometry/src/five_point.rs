@@ -25,7 +25,9 @@
 
 use crate::action::{null_vector, real_eigenvalues};
 use crate::eight_point::finish;
-use crate::minimal::{check_sample_size, epipolar_row, matrix_from_row_major, null_basis};
+use crate::minimal::{
+    check_sample_size, epipolar_row, is_duplicate, matrix_from_row_major, null_basis,
+};
 use crate::poly::{det, mat_mul, polish_root, trace_constraint, transpose, Poly3, PolyMatrix};
 use crate::GeometryError;
 use nalgebra::{DMatrix, Matrix3, SMatrix, Vector3};
@@ -36,7 +38,7 @@ pub const FIVE_POINT_SAMPLE: usize = 5;
 /// Gauss–Newton steps on the ten constraints that polish each root read off
 /// the action matrix (its eigenvalues of a non-normal matrix carry errors
 /// up to ~1e-8; two steps bring them to rounding level).
-const POLISH_STEPS: usize = 2;
+const POLISH_STEPS: usize = 3;
 
 /// Exponents `(x, y, z)` of the 20 monomials of degree ≤ 3, in the
 /// elimination order of Stewénius et al. 2006 (the 10 cubics first).
@@ -129,7 +131,10 @@ pub fn five_point(
             continue;
         }
         let ([x, y, z], _) = polish_root(&equations, [x, v[7] / v[9], v[8] / v[9]], POLISH_STEPS);
-        solutions.push(finish(bx * x + by * y + bz * z + bw)?);
+        let e = finish(bx * x + by * y + bz * z + bw)?;
+        if !is_duplicate(solutions.iter(), &e) {
+            solutions.push(e);
+        }
     }
     Ok(solutions)
 }

@@ -11,6 +11,12 @@
 //! * [`polish`]: the reference code's nonlinear polish of a sample's F
 //!   (PoseLib's `refine_fundamental`: Levenberg–Marquardt on the
 //!   Cauchy-robust Sampson error).
+//! * [`five_point`], [`six_point_focal`], [`seven_point`]: minimal
+//!   relative-pose solvers for hypothesis generation, returning every real
+//!   solution — essential matrices from 5 calibrated bearings (Nistér 2004),
+//!   `(f, F)` with one focal shared by both views from 6 centred pixel
+//!   matches (Stewénius et al. 2008), fundamental matrices from 7 pixel
+//!   matches (Hartley & Zisserman §11.1.2).
 //!
 //! Convention everywhere: a match (x1 ↔ x2) satisfies `x2ᵀ F x1 = 0`, with
 //! homogeneous pixel coordinates `x = (x, y, 1)`, `F` stored row-major in

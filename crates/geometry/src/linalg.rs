@@ -10,6 +10,8 @@
 //!   matrix `XᵀWX` of the normalised 8-point: all eigenvalues by Householder
 //!   tridiagonalisation and implicit QL (no eigenvectors), then the one
 //!   eigenvector needed by inverse iteration with a Cholesky factor.
+//! * [`GivensQr9`]: incremental Givens QR of a tall matrix with 9 columns
+//!   (the plain 8-point's rows), `RᵀR = XᵀX` without forming `XᵀX`.
 
 // Dense kernels on fixed-size arrays read most clearly with explicit indices.
 #![allow(clippy::needless_range_loop)]
@@ -386,6 +388,37 @@ fn cholesky_solve(l: &[[f64; 9]; 9], x: &mut [f64; 9]) {
     }
 }
 
+/// Incremental QR factorisation of a tall matrix with 9 columns by Givens
+/// rotations: after pushing the rows of `X`, `factor()` is an upper
+/// triangular `R` with `RᵀR = XᵀX` (so the same singular values and right
+/// singular vectors as `X`), computed without forming `XᵀX`.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct GivensQr9 {
+    /// The rows of the upper triangular factor `R`.
+    pub r: [[f64; 9]; 9],
+}
+
+impl GivensQr9 {
+    /// Folds one row into `R`, zeroing it against the diagonal.
+    pub fn push(&mut self, mut row: [f64; 9]) {
+        for k in 0..9 {
+            let b = row[k];
+            if b == 0.0 {
+                continue;
+            }
+            let a = self.r[k][k];
+            let h = a.hypot(b);
+            let (c, s) = (a / h, b / h);
+            self.r[k][k] = h;
+            for j in k + 1..9 {
+                let (rj, xj) = (self.r[k][j], row[j]);
+                self.r[k][j] = c * rj + s * xj;
+                row[j] = c * xj - s * rj;
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -407,6 +440,30 @@ mod tests {
             }
         }
         rows
+    }
+
+    #[test]
+    fn givens_qr_reproduces_the_gram_matrix() {
+        let mut qr = GivensQr9::default();
+        let mut gram = SMatrix::<f64, 9, 9>::zeros();
+        for i in 0..13 {
+            let t = i as f64;
+            let row = crate::minimal::epipolar_row(
+                [t.sin() * 50.0, t * 3.0 - 7.0, 1.0],
+                [t.cos() * 40.0, 11.0 - t * t, 1.0],
+            );
+            let v = SMatrix::<f64, 9, 1>::from_iterator(row);
+            gram += v * v.transpose();
+            qr.push(row);
+        }
+        let r = SMatrix::<f64, 9, 9>::from_fn(|i, j| qr.r[i][j]);
+        for i in 0..9 {
+            for j in 0..i {
+                assert_eq!(r[(i, j)], 0.0);
+            }
+        }
+        let rel = (r.transpose() * r - gram).norm() / gram.norm();
+        assert!(rel < 1e-14, "relative error {rel}");
     }
 
     #[test]

@@ -121,9 +121,14 @@ impl Mul for Poly3 {
     /// keeps every exponent at most 3 (a term beyond would be dropped).
     fn mul(self, other: Poly3) -> Poly3 {
         let mut out = Poly3::zero();
-        let right: Vec<_> = other.terms().collect();
+        let mut right = [(0, 0, 0, 0.0); LEN];
+        let mut count = 0;
+        for term in other.terms() {
+            right[count] = term;
+            count += 1;
+        }
         for (a, b, c, u) in self.terms() {
-            for &(d, e, f, v) in &right {
+            for &(d, e, f, v) in &right[..count] {
                 let (i, j, k) = (a + d, b + e, c + f);
                 if i <= MAX_EXP && j <= MAX_EXP && k <= MAX_EXP {
                     out.0[index(i, j, k)] += u * v;
@@ -202,12 +207,15 @@ pub(crate) fn relative_residual(equations: &[Poly3], p: [f64; 3]) -> f64 {
 /// Up to `steps` Gauss–Newton steps on the overdetermined system
 /// `equations(p) = 0` from `p`, each kept only if it lowers
 /// [`relative_residual`]. Returns the polished point and its residual.
-pub(crate) fn polish_root(equations: &[Poly3], mut p: [f64; 3], steps: usize) -> ([f64; 3], f64) {
+pub(crate) fn polish_root(
+    equations: &[Poly3; 10],
+    mut p: [f64; 3],
+    steps: usize,
+) -> ([f64; 3], f64) {
     let mut residual = relative_residual(equations, p);
     for _ in 0..steps {
-        let n = equations.len();
-        let mut jac = nalgebra::DMatrix::zeros(n, 3);
-        let mut r = nalgebra::DVector::zeros(n);
+        let mut jac = nalgebra::SMatrix::<f64, 10, 3>::zeros();
+        let mut r = nalgebra::SVector::<f64, 10>::zeros();
         for (k, e) in equations.iter().enumerate() {
             let (v, g, _) = e.eval(p[0], p[1], p[2]);
             r[k] = -v;
@@ -215,9 +223,14 @@ pub(crate) fn polish_root(equations: &[Poly3], mut p: [f64; 3], steps: usize) ->
                 jac[(k, j)] = g[j];
             }
         }
-        let Ok(delta) = jac.svd(true, true).solve(&r, 1e-14) else {
+        // Normal equations: the 3 × 3 Gram matrix of a Jacobian that is
+        // well conditioned at a simple root.
+        let Some(delta) = (jac.transpose() * jac).lu().solve(&(jac.transpose() * r)) else {
             break;
         };
+        if !delta.iter().all(|v| v.is_finite()) {
+            break;
+        }
         let next = [p[0] + delta[0], p[1] + delta[1], p[2] + delta[2]];
         let next_residual = relative_residual(equations, next);
         if next_residual.partial_cmp(&residual) != Some(std::cmp::Ordering::Less) {

@@ -8,14 +8,16 @@
 //! real roots, each a fundamental matrix consistent with the seven matches.
 //!
 //! Numerics: Hartley normalisation of each image first (centroid to the
-//! origin, mean distance `√2`), the null space by a one-sided Jacobi SVD,
+//! origin, mean distance `√2`), the null space by a column-pivoted Householder QR,
 //! and the cubic solved in `t = b/a` or `s = a/b`, whichever has the larger
 //! leading coefficient (so a root at `a = 0` or `b = 0` is never lost), by
 //! the eigenvalues of its companion matrix and two Newton steps.
 
 use crate::action::real_roots;
 use crate::eight_point::finish;
-use crate::minimal::{check_sample_size, epipolar_row, matrix_from_row_major, null_basis};
+use crate::minimal::{
+    check_sample_size, epipolar_row, is_duplicate, matrix_from_row_major, null_basis,
+};
 use crate::poly::{det, Poly3};
 use crate::{Correspondences, GeometryError};
 use nalgebra::{Matrix3, Vector3};
@@ -23,7 +25,8 @@ use nalgebra::{Matrix3, Vector3};
 /// Number of matches of the 7-point solver.
 pub const SEVEN_POINT_SAMPLE: usize = 7;
 
-/// All fundamental matrices (1 or 3) through exactly seven matches in
+/// All fundamental matrices (1 or 3; 2 when a double root is returned
+/// once) through exactly seven matches in
 /// pixel coordinates: `x2ᵀ F x1 = 0` for each match and `det F = 0`
 /// (Hartley & Zisserman §11.1.2). Each `F` has unit Frobenius norm and the
 /// sign that makes its entry of largest magnitude positive.
@@ -55,10 +58,14 @@ pub fn seven_point(points: &Correspondences) -> Result<Vec<Matrix3<f64>>, Geomet
         .collect();
     let [f1, f2] = null_basis::<2>(&rows)?;
     let (f1, f2) = (matrix_from_row_major(&f1), matrix_from_row_major(&f2));
-    pencil_roots(&f1, &f2)?
-        .into_iter()
-        .map(|(a, b)| finish(t2.transpose() * (f1 * a + f2 * b) * t1))
-        .collect()
+    let mut solutions = Vec::with_capacity(3);
+    for (a, b) in pencil_roots(&f1, &f2)? {
+        let f = finish(t2.transpose() * (f1 * a + f2 * b) * t1)?;
+        if !is_duplicate(solutions.iter(), &f) {
+            solutions.push(f);
+        }
+    }
+    Ok(solutions)
 }
 
 /// The real roots `(a, b)` of the homogeneous cubic `det(a F1 + b F2) = 0`,

@@ -37,7 +37,9 @@
 
 use crate::action::{null_vector, real_eigenvalues};
 use crate::eight_point::finish;
-use crate::minimal::{check_sample_size, epipolar_row, matrix_from_row_major, null_basis};
+use crate::minimal::{
+    check_sample_size, epipolar_row, is_duplicate, matrix_from_row_major, null_basis,
+};
 use crate::poly::{det, mat_mul, polish_root, trace_constraint, transpose, Poly3, PolyMatrix};
 use crate::{Correspondences, GeometryError};
 use nalgebra::{DMatrix, DVector, Matrix3, SMatrix};
@@ -47,7 +49,7 @@ pub const SIX_POINT_SAMPLE: usize = 6;
 
 /// Gauss–Newton steps on the ten equations in `(x, y, w)` that polish each
 /// candidate read off the eigenproblem.
-const POLISH_STEPS: usize = 3;
+const POLISH_STEPS: usize = 6;
 
 /// A candidate is a solution when, after polishing, the ten equations
 /// vanish to this fraction of the magnitude of their terms (see
@@ -160,6 +162,12 @@ pub fn six_point_focal(points: &Correspondences) -> Result<Vec<FocalSolution>, G
         let f_scaled = basis[0] * x + basis[1] * y + basis[2];
         let focal = s / w.sqrt();
         let fundamental = finish(unscale * f_scaled * unscale)?;
+        if is_duplicate(
+            solutions.iter().map(|s: &FocalSolution| &s.fundamental),
+            &fundamental,
+        ) {
+            continue;
+        }
         let k = Matrix3::new(focal, 0.0, 0.0, 0.0, focal, 0.0, 0.0, 0.0, 1.0);
         let essential = finish(k * fundamental * k)?;
         solutions.push(FocalSolution {

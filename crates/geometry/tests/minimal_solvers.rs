@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::{intrinsics, random_scene, sample_indices};
+use common::{intrinsics, json_matrix, json_rows, random_scene, sample_indices};
 use geometry::{
     five_point, seven_point, six_point_focal, Correspondences, FocalSolution, GeometryError,
 };
@@ -42,30 +42,16 @@ fn fixture() -> Value {
     serde_json::from_str(include_str!("fixtures/minimal_solvers.json")).unwrap()
 }
 
-fn matrix(v: &Value) -> Matrix3<f64> {
-    let e: Vec<f64> = v
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect();
-    Matrix3::from_row_slice(&e)
-}
-
-fn rows<const N: usize>(v: &Value) -> Vec<[f64; N]> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|p| std::array::from_fn(|k| p[k].as_f64().unwrap()))
-        .collect()
-}
-
 fn bearings(v: &Value) -> Vec<Vector3<f64>> {
-    rows::<3>(v).into_iter().map(Vector3::from).collect()
+    json_rows::<3>(v).into_iter().map(Vector3::from).collect()
 }
 
 fn correspondences(case: &Value) -> Correspondences {
-    Correspondences::new(&rows::<2>(&case["points1"]), &rows::<2>(&case["points2"])).unwrap()
+    Correspondences::new(
+        &json_rows::<2>(&case["points1"]),
+        &json_rows::<2>(&case["points2"]),
+    )
+    .unwrap()
 }
 
 /// Largest `|q2ᵀ M q1| / (‖q1‖ ‖q2‖ ‖M‖)` over the matches.
@@ -85,42 +71,89 @@ fn homogeneous(points: &Correspondences) -> (Vec<Vector3<f64>>, Vec<Vector3<f64>
         .unzip()
 }
 
-#[test]
-fn five_point_matches_poselib_and_satisfies_its_constraints() {
+/// Worst-case figures of a solver's matrix sets against an oracle's.
+#[derive(Debug, Default)]
+struct SetComparison {
+    /// Largest distance from an oracle matrix to the closest of ours.
+    worst_match: f64,
+    /// Largest distance from the truth to the closest of ours (noise-free cases).
+    worst_truth: f64,
+    /// Largest residual of our solutions.
+    worst_residual: f64,
+    /// Our solution count per case.
+    counts: Vec<usize>,
+}
+
+/// Runs `solve` on every case of fixture section `section`, asserts the
+/// same solution count as the oracle list `oracle`, passes each oracle
+/// matrix and its distance to ours to `check_match`, and collects
+/// `residual` of each of our solutions and the distance of the truth
+/// (`truth` key, noise-free cases) to ours.
+fn compare_with_oracle(
+    section: &str,
+    oracle: &str,
+    truth: &str,
+    solve: impl Fn(&Value) -> Vec<Matrix3<f64>>,
+    residual: impl Fn(&Value, &Matrix3<f64>) -> f64,
+    check_match: impl Fn(usize, &Matrix3<f64>, f64),
+) -> SetComparison {
     let json = fixture();
-    let (mut worst_match, mut worst_truth, mut worst_residual) = (0.0_f64, 0.0_f64, 0.0_f64);
-    let mut counts = Vec::new();
-    for (k, case) in json["five_point"].as_array().unwrap().iter().enumerate() {
-        let (q1, q2) = (bearings(&case["bearings1"]), bearings(&case["bearings2"]));
-        let ours = five_point(&q1, &q2).unwrap();
-        let theirs: Vec<Matrix3<f64>> = case["poselib"]
+    let mut out = SetComparison::default();
+    for (k, case) in json[section].as_array().unwrap().iter().enumerate() {
+        let ours = solve(case);
+        let theirs: Vec<Matrix3<f64>> = case[oracle]
             .as_array()
             .unwrap()
             .iter()
-            .map(matrix)
+            .map(json_matrix)
             .collect();
-        assert_eq!(ours.len(), theirs.len(), "case {k}: solution count");
-        counts.push(ours.len());
-        for e in &theirs {
-            // PoseLib's roots (Sturm bisection) carry errors up to 1e-3 on
-            // some samples; its own trace residual bounds them.
-            let d = closest(&ours, e);
-            assert!(d < 1e-6 || d < 10.0 * trace_residual(e), "case {k}: {d:e}");
-            worst_match = worst_match.max(d);
+        assert_eq!(
+            ours.len(),
+            theirs.len(),
+            "{section} case {k}: solution count"
+        );
+        out.counts.push(ours.len());
+        for m in &theirs {
+            let d = closest(&ours, m);
+            check_match(k, m, d);
+            out.worst_match = out.worst_match.max(d);
         }
-        for e in &ours {
-            worst_residual = worst_residual
-                .max(epipolar_residual(e, &q1, &q2))
-                .max(trace_residual(e))
-                .max(e.determinant().abs());
+        for m in &ours {
+            out.worst_residual = out.worst_residual.max(residual(case, m));
         }
         if case["noise_px"].as_f64().unwrap() == 0.0 {
-            worst_truth = worst_truth.max(closest(&ours, &matrix(&case["essential_true"])));
+            out.worst_truth = out
+                .worst_truth
+                .max(closest(&ours, &json_matrix(&case[truth])));
         }
     }
-    println!("5-point: max distance to PoseLib {worst_match:e}, to truth {worst_truth:e}, residual {worst_residual:e}, counts {counts:?}");
-    assert!(worst_truth < 1e-8, "truth {worst_truth:e}");
-    assert!(worst_residual < 1e-13, "residual {worst_residual:e}");
+    out
+}
+
+#[test]
+fn five_point_matches_poselib_and_satisfies_its_constraints() {
+    let bearing_pair = |case: &Value| (bearings(&case["bearings1"]), bearings(&case["bearings2"]));
+    let c = compare_with_oracle(
+        "five_point",
+        "poselib",
+        "essential_true",
+        |case| {
+            let (q1, q2) = bearing_pair(case);
+            five_point(&q1, &q2).unwrap()
+        },
+        |case, e| {
+            let (q1, q2) = bearing_pair(case);
+            epipolar_residual(e, &q1, &q2)
+                .max(trace_residual(e))
+                .max(e.determinant().abs())
+        },
+        // PoseLib's roots (Sturm bisection) carry errors up to 1e-3 on
+        // some samples; its own trace residual bounds them.
+        |k, e, d| assert!(d < 1e-6 || d < 10.0 * trace_residual(e), "case {k}: {d:e}"),
+    );
+    println!("5-point vs PoseLib: {c:?}");
+    assert!(c.worst_truth < 1e-8, "{c:?}");
+    assert!(c.worst_residual < 1e-13, "{c:?}");
 }
 
 #[test]
@@ -181,7 +214,7 @@ fn six_point_matches_poselib_and_satisfies_its_constraints() {
         );
         for t in theirs {
             let focal = t["focal"].as_f64().unwrap();
-            let essential = matrix(&t["essential"]);
+            let essential = json_matrix(&t["essential"]);
             // PoseLib's own error: its F = K⁻¹ E K⁻¹ on the six matches.
             let k_inv = intrinsics(1.0 / focal);
             let (p1, p2) = homogeneous(&points);
@@ -218,7 +251,7 @@ fn six_point_matches_poselib_and_satisfies_its_constraints() {
     println!("6-point: {accurate} accurate PoseLib roots: max relative focal difference {worst_focal:e}, E distance {worst_e:e}; {inaccurate} inaccurate ones; our residual {worst_residual:e}, counts {counts:?}");
     assert!(worst_focal < 1e-6, "focal {worst_focal:e}");
     assert!(worst_e < 1e-6, "E {worst_e:e}");
-    assert!(worst_residual < 1e-9, "residual {worst_residual:e}");
+    assert!(worst_residual < 1e-12, "residual {worst_residual:e}");
 }
 
 #[test]
@@ -238,7 +271,7 @@ fn six_point_recovers_the_true_focal_on_noiseless_scenes() {
             check(
                 &correspondences(case),
                 focal,
-                &matrix(&case["essential_true"]),
+                &json_matrix(&case["essential_true"]),
             );
         }
     }
@@ -271,36 +304,22 @@ fn six_point_recovers_the_true_focal_on_noiseless_scenes() {
 
 #[test]
 fn seven_point_matches_the_direct_reference() {
-    let json = fixture();
-    let (mut worst_match, mut worst_truth, mut worst_residual) = (0.0_f64, 0.0_f64, 0.0_f64);
-    for (k, case) in json["seven_point"].as_array().unwrap().iter().enumerate() {
-        let points = correspondences(case);
-        let ours = seven_point(&points).unwrap();
-        let theirs: Vec<Matrix3<f64>> = case["reference"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(matrix)
-            .collect();
-        assert_eq!(ours.len(), theirs.len(), "case {k}: solution count");
-        assert!(ours.len() == 1 || ours.len() == 3);
-        for f in &theirs {
-            worst_match = worst_match.max(closest(&ours, f));
-        }
-        let (p1, p2) = homogeneous(&points);
-        for f in &ours {
-            worst_residual = worst_residual
-                .max(epipolar_residual(f, &p1, &p2))
-                .max(f.determinant().abs());
-        }
-        if case["noise_px"].as_f64().unwrap() == 0.0 {
-            worst_truth = worst_truth.max(closest(&ours, &matrix(&case["fundamental_true"])));
-        }
-    }
-    println!("7-point: max distance to reference {worst_match:e}, to truth {worst_truth:e}, residual {worst_residual:e}");
-    assert!(worst_match < 1e-9, "reference {worst_match:e}");
-    assert!(worst_truth < 1e-9, "truth {worst_truth:e}");
-    assert!(worst_residual < 1e-12, "residual {worst_residual:e}");
+    let c = compare_with_oracle(
+        "seven_point",
+        "reference",
+        "fundamental_true",
+        |case| seven_point(&correspondences(case)).unwrap(),
+        |case, f| {
+            let (p1, p2) = homogeneous(&correspondences(case));
+            epipolar_residual(f, &p1, &p2).max(f.determinant().abs())
+        },
+        |_, _, _| {},
+    );
+    println!("7-point vs reference: {c:?}");
+    assert!(c.counts.iter().all(|&n| n == 1 || n == 3), "{c:?}");
+    assert!(c.worst_match < 1e-9, "{c:?}");
+    assert!(c.worst_truth < 1e-9, "{c:?}");
+    assert!(c.worst_residual < 1e-12, "{c:?}");
 }
 
 #[test]

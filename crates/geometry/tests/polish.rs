@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{random_scene, sample_indices};
+use common::{json_matrix, json_rows, random_scene, sample_indices};
 use geometry::{
     eight_point_normalized, eight_point_plain, enforce_rank2, frob_distance, polish_fundamental,
     sampson_distance_squared, Correspondences, GeometryError, POLISH_LOSS_SCALE_PX,
@@ -35,30 +35,18 @@ struct Case {
 fn poselib_cases() -> Vec<Case> {
     let text = include_str!("fixtures/poselib_refine_fundamental.json");
     let json: serde_json::Value = serde_json::from_str(text).unwrap();
-    let pairs = |v: &serde_json::Value| -> Vec<[f64; 2]> {
-        v.as_array()
-            .unwrap()
-            .iter()
-            .map(|p| [p[0].as_f64().unwrap(), p[1].as_f64().unwrap()])
-            .collect()
-    };
-    let matrix = |v: &serde_json::Value| {
-        let e: Vec<f64> = v
-            .as_array()
-            .unwrap()
-            .iter()
-            .map(|x| x.as_f64().unwrap())
-            .collect();
-        Matrix3::from_row_slice(&e)
-    };
     json["cases"]
         .as_array()
         .unwrap()
         .iter()
         .map(|c| Case {
-            points: Correspondences::new(&pairs(&c["points1"]), &pairs(&c["points2"])).unwrap(),
-            initial: matrix(&c["initial"]),
-            poselib: matrix(&c["poselib"]),
+            points: Correspondences::new(
+                &json_rows::<2>(&c["points1"]),
+                &json_rows::<2>(&c["points2"]),
+            )
+            .unwrap(),
+            initial: json_matrix(&c["initial"]),
+            poselib: json_matrix(&c["poselib"]),
             iterations: c["iterations"].as_u64().unwrap() as usize,
         })
         .collect()

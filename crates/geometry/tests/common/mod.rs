@@ -229,3 +229,23 @@ pub fn point_lists(points: &Correspondences) -> (Vec<[f64; 2]>, Vec<[f64; 2]>) {
         .map(|i| (points.point1(i), points.point2(i)))
         .unzip()
 }
+
+/// A fixture's JSON array of nine numbers as the row-major matrix.
+pub fn json_matrix(v: &serde_json::Value) -> Matrix3<f64> {
+    let e: Vec<f64> = v
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    Matrix3::from_row_slice(&e)
+}
+
+/// A fixture's JSON array of `N`-number arrays (points, bearings).
+pub fn json_rows<const N: usize>(v: &serde_json::Value) -> Vec<[f64; N]> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|p| std::array::from_fn(|k| p[k].as_f64().unwrap()))
+        .collect()
+}
