@@ -536,21 +536,7 @@ mod tests {
     fn aberth_finds_known_roots() {
         // (z - 1)(z + 2)(z - 0.5)(z^2 + 1)(z - 30) expanded.
         let roots_true = [1.0, -2.0, 0.5, 30.0];
-        let mut poly = vec![1.0];
-        let mul = |p: &Vec<f64>, r: &[f64]| -> Vec<f64> {
-            // multiply p by polynomial r (ascending)
-            let mut out = vec![0.0; p.len() + r.len() - 1];
-            for (i, a) in p.iter().enumerate() {
-                for (j, b) in r.iter().enumerate() {
-                    out[i + j] += a * b;
-                }
-            }
-            out
-        };
-        for r in roots_true {
-            poly = mul(&poly, &[-r, 1.0]);
-        }
-        poly = mul(&poly, &[1.0, 0.0, 1.0]);
+        let poly = poly_from_roots(&roots_true, &[(0.0, 1.0)]);
         let mut out = [C64::new(0.0, 0.0); MAX_DEGREE];
         let n = aberth_roots(&poly, &mut out, None, Simd::detect());
         assert_eq!(n, 6);
