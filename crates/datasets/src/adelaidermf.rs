@@ -153,107 +153,17 @@ pub fn scene_from_mat(
     path: &Path,
     options: LoadOptions,
 ) -> Result<Scene, DatasetError> {
-    let bad = |field: &str, problem: String| DatasetError::BadField {
-        path: path.to_path_buf(),
-        field: format!("variable `{field}`"),
-        problem,
-    };
-    let var = |field: &str| {
-        mat.get(field).ok_or_else(|| DatasetError::MissingField {
-            path: path.to_path_buf(),
-            field: format!("variable `{field}`"),
-        })
-    };
-
-    let data = var("data")?;
-    let values = data
-        .to_f64()
-        .ok_or_else(|| bad("data", format!("class {:?} is not numeric", data.class)))?;
-    if data.dims.len() != 2 || data.dims[0] != 6 {
-        return Err(bad(
-            "data",
-            format!("dimensions {:?}, expected 6 x N", data.dims),
-        ));
-    }
-    let n = data.dims[1];
-    let mut points1 = Vec::with_capacity(n);
-    let mut points2 = Vec::with_capacity(n);
-    for (i, column) in values.chunks_exact(6).enumerate() {
-        points1.push(
-            dehomogenise([column[0], column[1], column[2]]).ok_or_else(|| {
-                bad(
-                    "data",
-                    format!(
-                        "column {i}: image-1 point has third coordinate {}",
-                        column[2]
-                    ),
-                )
-            })?,
-        );
-        points2.push(
-            dehomogenise([column[3], column[4], column[5]]).ok_or_else(|| {
-                bad(
-                    "data",
-                    format!(
-                        "column {i}: image-2 point has third coordinate {}",
-                        column[5]
-                    ),
-                )
-            })?,
-        );
-    }
-
-    let label = var("label")?;
-    let label_values = label
-        .to_f64()
-        .ok_or_else(|| bad("label", format!("class {:?} is not numeric", label.class)))?;
-    if label.dims.iter().filter(|&&d| d != 1).count() > 1 {
-        return Err(bad(
-            "label",
-            format!("dimensions {:?}, expected a vector", label.dims),
-        ));
-    }
-    let labels = label_values
-        .iter()
-        .enumerate()
-        .map(|(i, &v)| {
-            if v.fract() == 0.0 && (0.0..=f64::from(i32::MAX)).contains(&v) {
-                Ok(v as i32)
-            } else {
-                Err(bad(
-                    "label",
-                    format!("element {i} is {v}, not a label 0, 1, 2, …"),
-                ))
-            }
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-
-    let img1 = var("img1")?;
-    let img2 = var("img2")?;
-    let size1 = image_size(img1).map_err(|p| bad("img1", p))?;
-    let size2 = image_size(img2).map_err(|p| bad("img2", p))?;
-    if size1 != size2 {
-        return Err(bad(
-            "img2",
-            format!("size {size2:?} differs from img1 {size1:?}"),
-        ));
-    }
-    let images = if options.images {
-        Some((
-            to_rgb(img1).map_err(|p| bad("img1", p))?,
-            to_rgb(img2).map_err(|p| bad("img2", p))?,
-        ))
-    } else {
-        None
-    };
-
+    let file = MatScene { mat, path };
+    let points = file.points()?;
+    let labels = file.labels()?;
+    let (image_size, images) = file.images(options)?;
     let scene = Scene {
         name: name.to_string(),
-        points1,
-        points2,
+        points1: points.points1,
+        points2: points.points2,
         labels: Some(labels),
-        image_size: size1,
-        principal_point: centre_principal_point(size1),
+        image_size,
+        principal_point: centre_principal_point(image_size),
         true_focal: None,
         gt_fundamentals: Vec::new(),
         images,
@@ -261,6 +171,129 @@ pub fn scene_from_mat(
     scene.validate().map_err(|e| e.in_file(path))?;
     Ok(scene)
 }
+
+/// The variables of one AdelaideRMF file, read field by field with errors
+/// that name the file and the variable.
+struct MatScene<'a> {
+    mat: &'a MatFile,
+    path: &'a Path,
+}
+
+/// The correspondences of a scene, in pixels.
+struct Correspondences {
+    points1: Vec<[f64; 2]>,
+    points2: Vec<[f64; 2]>,
+}
+
+impl MatScene<'_> {
+    /// A [`DatasetError::BadField`] for the variable `field`.
+    fn bad(&self, field: &str, problem: String) -> DatasetError {
+        DatasetError::BadField {
+            path: self.path.to_path_buf(),
+            field: format!("variable `{field}`"),
+            problem,
+        }
+    }
+
+    /// The variable `field`, or [`DatasetError::MissingField`].
+    fn var(&self, field: &str) -> Result<&MatVariable, DatasetError> {
+        self.mat
+            .get(field)
+            .ok_or_else(|| DatasetError::MissingField {
+                path: self.path.to_path_buf(),
+                field: format!("variable `{field}`"),
+            })
+    }
+
+    /// `data`: 6 × N columns `(x1, y1, w1, x2, y2, w2)`, dehomogenised.
+    fn points(&self) -> Result<Correspondences, DatasetError> {
+        let bad = |field: &str, problem: String| self.bad(field, problem);
+        let data = self.var("data")?;
+        let values = data
+            .to_f64()
+            .ok_or_else(|| bad("data", format!("class {:?} is not numeric", data.class)))?;
+        if data.dims.len() != 2 || data.dims[0] != 6 {
+            return Err(bad(
+                "data",
+                format!("dimensions {:?}, expected 6 x N", data.dims),
+            ));
+        }
+        let n = data.dims[1];
+        let mut points1 = Vec::with_capacity(n);
+        let mut points2 = Vec::with_capacity(n);
+        for (i, column) in values.chunks_exact(6).enumerate() {
+            for (image, w, points) in [(1, 2, &mut points1), (2, 5, &mut points2)] {
+                let point = [column[w - 2], column[w - 1], column[w]];
+                points.push(dehomogenise(point).ok_or_else(|| {
+                    bad(
+                        "data",
+                        format!(
+                            "column {i}: image-{image} point has third coordinate {}",
+                            column[w]
+                        ),
+                    )
+                })?);
+            }
+        }
+        Ok(Correspondences { points1, points2 })
+    }
+
+    /// `label`: a vector of integers 0, 1, 2, ….
+    fn labels(&self) -> Result<Vec<i32>, DatasetError> {
+        let bad = |field: &str, problem: String| self.bad(field, problem);
+        let label = self.var("label")?;
+        let label_values = label
+            .to_f64()
+            .ok_or_else(|| bad("label", format!("class {:?} is not numeric", label.class)))?;
+        if label.dims.iter().filter(|&&d| d != 1).count() > 1 {
+            return Err(bad(
+                "label",
+                format!("dimensions {:?}, expected a vector", label.dims),
+            ));
+        }
+        label_values
+            .iter()
+            .enumerate()
+            .map(|(i, &v)| {
+                if v.fract() == 0.0 && (0.0..=f64::from(i32::MAX)).contains(&v) {
+                    Ok(v as i32)
+                } else {
+                    Err(bad(
+                        "label",
+                        format!("element {i} is {v}, not a label 0, 1, 2, …"),
+                    ))
+                }
+            })
+            .collect()
+    }
+
+    /// `img1`, `img2`: their common size, and the images when asked for.
+    fn images(&self, options: LoadOptions) -> Result<ImagesRead, DatasetError> {
+        let bad = |field: &str, problem: String| self.bad(field, problem);
+        let img1 = self.var("img1")?;
+        let img2 = self.var("img2")?;
+        let size1 = image_size(img1).map_err(|p| bad("img1", p))?;
+        let size2 = image_size(img2).map_err(|p| bad("img2", p))?;
+        if size1 != size2 {
+            return Err(bad(
+                "img2",
+                format!("size {size2:?} differs from img1 {size1:?}"),
+            ));
+        }
+        let images = if options.images {
+            Some((
+                to_rgb(img1).map_err(|p| bad("img1", p))?,
+                to_rgb(img2).map_err(|p| bad("img2", p))?,
+            ))
+        } else {
+            None
+        };
+        Ok((size1, images))
+    }
+}
+
+/// The image size and, when loaded, the image pair.
+type ImagesRead = ((u32, u32), Option<(image::RgbImage, image::RgbImage)>);
 
 /// `(x / w, y / w)`, or `None` when `w` is zero or not finite (a point at
 /// infinity or garbage).

@@ -123,15 +123,27 @@ impl Scene {
     /// assert_eq!(err, "scene `tiny`: field `points2` at index 3: non-finite coordinate");
     /// ```
     pub fn validate(&self) -> Result<(), DatasetError> {
-        let err = |field: &'static str, index: Option<usize>, problem: String| {
-            DatasetError::InvalidScene {
-                path: None,
-                scene: self.name.clone(),
-                field,
-                index,
-                problem,
-            }
-        };
+        self.validate_lengths()?;
+        self.validate_coordinates()?;
+        self.validate_labels()?;
+        self.validate_camera()?;
+        self.validate_images()
+    }
+
+    /// The [`DatasetError::InvalidScene`] of this scene.
+    fn invalid(&self, field: &'static str, index: Option<usize>, problem: String) -> DatasetError {
+        DatasetError::InvalidScene {
+            path: None,
+            scene: self.name.clone(),
+            field,
+            index,
+            problem,
+        }
+    }
+
+    /// Equal lengths of `points1`, `points2`, `labels`; N ≥ [`MIN_POINTS`].
+    fn validate_lengths(&self) -> Result<(), DatasetError> {
+        let err = |field, index, problem| self.invalid(field, index, problem);
         let n = self.points1.len();
         if self.points2.len() != n {
             return Err(err(
@@ -156,14 +168,25 @@ impl Scene {
                 format!("{n} correspondences, at least {MIN_POINTS} needed"),
             ));
         }
+        Ok(())
+    }
+
+    /// Finite coordinates in both images.
+    fn validate_coordinates(&self) -> Result<(), DatasetError> {
         for (field, points) in [("points1", &self.points1), ("points2", &self.points2)] {
             if let Some(i) = points
                 .iter()
                 .position(|p| !p[0].is_finite() || !p[1].is_finite())
             {
-                return Err(err(field, Some(i), "non-finite coordinate".to_string()));
+                return Err(self.invalid(field, Some(i), "non-finite coordinate".to_string()));
             }
         }
+        Ok(())
+    }
+
+    /// Labels ≥ 0 and, with ground-truth matrices, none above their count.
+    fn validate_labels(&self) -> Result<(), DatasetError> {
+        let err = |field, index, problem| self.invalid(field, index, problem);
         if let Some(labels) = &self.labels {
             if let Some(i) = labels.iter().position(|&l| l < 0) {
                 return Err(err(
@@ -183,6 +206,13 @@ impl Scene {
                 }
             }
         }
+        Ok(())
+    }
+
+    /// A non-empty image, a finite principal point, a positive finite true
+    /// focal and finite ground-truth matrices.
+    fn validate_camera(&self) -> Result<(), DatasetError> {
+        let err = |field, index, problem| self.invalid(field, index, problem);
         if self.image_size.0 == 0 || self.image_size.1 == 0 {
             return Err(err(
                 "image_size",
@@ -213,10 +243,15 @@ impl Scene {
                 "non-finite entry".to_string(),
             ));
         }
+        Ok(())
+    }
+
+    /// Images, if any, of the stated size.
+    fn validate_images(&self) -> Result<(), DatasetError> {
         if let Some((a, b)) = &self.images {
             for (i, img) in [a, b].into_iter().enumerate() {
                 if img.dimensions() != self.image_size {
-                    return Err(err(
+                    return Err(self.invalid(
                         "images",
                         Some(i),
                         format!(

@@ -1,8 +1,11 @@
-//! The two Kruppa constraints in the SVD form of F (method.md step 4).
+//! The two Kruppa constraints in the SVD form of F (method.md step 4): their
+//! values, gradients and expansion along a step's plane, and the public
+//! residuals that measure an estimate's feasibility.
 
 use nalgebra::{Matrix3, Vector3};
 
-use crate::poly::{Lin2, Quad2, Quartic2};
+use crate::bivariate::{Lin2, Quad2, Quartic2};
+use crate::params::FocalEstimate;
 
 /// The parts of the SVD `F = U diag(s1, s2, 0) V^T` the Kruppa constraints
 /// use: `u1, u2` (first two columns of U, image 2), `v1, v2` (first two
@@ -234,6 +237,65 @@ fn form_with_grad(a: &Vector3<f64>, b: &Vector3<f64>, f: f64, m: &Vector3<f64>) 
         [2.0 * f * ab, a[0] * bm + b[0] * am, a[1] * bm + b[1] * am],
     )
 }
+
+/// The two Kruppa constraints `(g1, g2)` of method.md step 4 (Hartley &
+/// Zisserman's ratio form in the SVD of F) at the cameras
+/// `(f1, pp1)`, `(f2, pp2)`:
+///
+/// ```text
+/// F / |F| = U diag(s1, s2, 0) V^T,  w = K K^T = [[f^2+u^2, uv, u], [uv, f^2+v^2, v], [u, v, 1]]
+/// g1 = s1 (v1'w1v1)(u1'w2u2) + s2 (v1'w1v2)(u2'w2u2)
+/// g2 = s1 (v1'w1v2)(u1'w2u1) + s2 (v2'w1v2)(u1'w2u2)
+/// ```
+///
+/// (u_i columns of U: image 2; v_i columns of V: image 1). F is scaled to
+/// unit Frobenius norm. `None` when F is not finite or zero.
+pub fn kruppa_residuals(
+    f: &Matrix3<f64>,
+    f1: f64,
+    pp1: [f64; 2],
+    f2: f64,
+    pp2: [f64; 2],
+) -> Option<[f64; 2]> {
+    let k = KruppaSvd::new(f)?;
+    Some(k.eval(&[f1, pp1[0], pp1[1], f2, pp2[0], pp2[1]]))
+}
+
+/// The Kruppa residual of an estimate relative to the residual at the prior
+/// `p = (f_prior, 0, 0, f_prior, 0, 0)`: `max_i |g_i(x)| / max(max_i
+/// |g_i(p)|, 1e-8 T(p))` (the fixture's feasibility measure; a solver
+/// success has it <= [`KRUPPA_TOLERANCE`]). `T(p)` is the largest magnitude
+/// of the two products in each `g_i` at the prior, so the floor only matters
+/// when the prior itself satisfies the constraints to rounding level.
+/// `None` when F is not finite or zero.
+pub fn relative_kruppa_residual(
+    f: &Matrix3<f64>,
+    estimate: &FocalEstimate,
+    f_prior: f64,
+) -> Option<f64> {
+    let k = KruppaSvd::new(f)?;
+    Some(relative_residual(&k, &estimate.unknowns(), f_prior))
+}
+
+/// [`relative_kruppa_residual`] with the SVD of F at hand.
+pub(crate) fn relative_residual(k: &KruppaSvd, x: &[f64; 6], f_prior: f64) -> f64 {
+    let g = k.eval(x);
+    let p = [f_prior, 0.0, 0.0, f_prior, 0.0, 0.0];
+    let g0 = k.eval(&p);
+    let num = g[0].abs().max(g[1].abs());
+    let den = g0[0]
+        .abs()
+        .max(g0[1].abs())
+        .max(1e-8 * k.term_magnitude(&p));
+    if num == 0.0 {
+        0.0
+    } else {
+        num / den
+    }
+}
+
+/// Tolerance of the final Kruppa check, relative to the prior's residual.
+pub const KRUPPA_TOLERANCE: f64 = 1e-6;
 
 #[cfg(test)]
 mod tests {

@@ -28,23 +28,35 @@
 //! (`x2^T F x1 = 0`); `f1` belongs to image 1 (the `x1` side), `f2` to
 //! image 2.
 
+#![deny(unsafe_code)]
+
+mod aberth;
+mod bezout;
+mod bivariate;
 mod bougnoux;
 mod consensus;
 mod error;
 mod kruppa;
-mod poly;
+mod multi_start;
+mod params;
+mod peaks;
+mod resultant;
 mod robust;
+mod simd;
+#[cfg(test)]
+mod test_support;
 
 pub use bougnoux::{bougnoux, bougnoux_per_image};
 pub use consensus::{
-    band_indices, find_peaks, focal_consensus, gaussian_kde, kde_bandwidth, linspace,
-    median_sorted, passes_local_test, percentile_sorted, within_band, ConsensusParams,
-    FocalConsensus, Peaks,
+    band_indices, focal_consensus, gaussian_kde, kde_bandwidth, linspace, median_sorted,
+    passes_local_test, percentile_sorted, within_band, ConsensusParams, FocalConsensus,
 };
 pub use error::FocalFailure;
-pub use robust::{
-    apply_on_failure, kruppa_residuals, relative_kruppa_residual, robust_focals,
-    robust_focals_multi_start, robust_focals_or, FocalEstimate, FocalWeights, OnFailure,
-    RobustFocalParams, ADELAIDE_MAX_ITERS, ADELAIDE_WEIGHT_SETS, HOPEF_MAX_ITERS,
-    HOPEF_WEIGHT_SETS, KRUPPA_TOLERANCE,
+pub use kruppa::{kruppa_residuals, relative_kruppa_residual, KRUPPA_TOLERANCE};
+pub use multi_start::robust_focals_multi_start;
+pub use params::{
+    FocalEstimate, FocalWeights, OnFailure, RobustFocalParams, ADELAIDE_MAX_ITERS,
+    ADELAIDE_WEIGHT_SETS, HOPEF_MAX_ITERS, HOPEF_WEIGHT_SETS,
 };
+pub use peaks::{find_peaks, Peaks};
+pub use robust::{apply_on_failure, robust_focals, robust_focals_or};

@@ -1,240 +1,16 @@
 //! The robust iterative focal solver of Kocur, Kyselica and Kukelova
-//! (CVPR 2024), as method.md step 4 specifies it, and the reference's
-//! multi-start rule.
+//! (CVPR 2024), as method.md step 4 specifies it: the iteration from the
+//! prior, one step's plane and quartics, the stopping rule and the failure
+//! policy.
 
 use nalgebra::Matrix3;
-use serde::{Deserialize, Serialize};
 
+use crate::bezout::{min_l1_real_solution, RootCache};
 use crate::error::FocalFailure;
-use crate::kruppa::KruppaSvd;
-use crate::poly::{min_l1_real_solution, RootCache, Simd};
-
-/// Weights of the deviation from the priors, `(w_f1, w_pp1, w_f2, w_pp2)`:
-/// the objective is `w_f1 (f1 - f_prior)^2 + w_pp1 |pp1|^2 + w_f2 (f2 -
-/// f_prior)^2 + w_pp2 |pp2|^2`, so each enters the step directions as `1/w`
-/// (method.md step 4).
-///
-/// Defaults (serde and [`Default`]): `(5e-4, 1, 5e-4, 1)`, PoseLib's.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct FocalWeights {
-    /// Weight of the focal length of image 1. Default `5e-4`.
-    pub f1: f64,
-    /// Weight of the principal point of image 1 (both coordinates). Default `1`.
-    pub pp1: f64,
-    /// Weight of the focal length of image 2. Default `5e-4`.
-    pub f2: f64,
-    /// Weight of the principal point of image 2 (both coordinates). Default `1`.
-    pub pp2: f64,
-}
-
-impl FocalWeights {
-    /// The weight set `(w_f1, w_pp1, w_f2, w_pp2)`.
-    pub const fn new(f1: f64, pp1: f64, f2: f64, pp2: f64) -> Self {
-        Self { f1, pp1, f2, pp2 }
-    }
-
-    /// Per-unknown weights for `x = (f1, u1, v1, f2, u2, v2)`.
-    fn per_unknown(&self) -> [f64; 6] {
-        [self.f1, self.pp1, self.pp1, self.f2, self.pp2, self.pp2]
-    }
-
-    fn validate(&self) -> Result<(), FocalFailure> {
-        for (name, value) in [
-            ("w_f1", self.f1),
-            ("w_pp1", self.pp1),
-            ("w_f2", self.f2),
-            ("w_pp2", self.pp2),
-        ] {
-            if !(value.is_finite() && value > 0.0) {
-                return Err(FocalFailure::InvalidParameter {
-                    name,
-                    value,
-                    requirement: "must be finite and > 0",
-                });
-            }
-        }
-        Ok(())
-    }
-}
-
-impl Default for FocalWeights {
-    fn default() -> Self {
-        Self::new(5e-4, 1.0, 5e-4, 1.0)
-    }
-}
-
-/// The weight sets the reference implementation tries on AdelaideRMF
-/// (method.md step 4, with `max_iters` 100).
-pub const ADELAIDE_WEIGHT_SETS: [FocalWeights; 4] = [
-    FocalWeights::new(1e-3, 1.0, 1e-3, 1.0),
-    FocalWeights::new(5e-4, 1.0, 5e-4, 1.0),
-    FocalWeights::new(1e-4, 1.0, 1e-4, 1.0),
-    FocalWeights::new(5e-4, 2.0, 5e-4, 2.0),
-];
-
-/// The reference's `max_iters` with [`ADELAIDE_WEIGHT_SETS`].
-pub const ADELAIDE_MAX_ITERS: usize = 100;
-
-/// The weight sets the reference implementation tries on HOPE-F (method.md
-/// step 4, with `max_iters` 120): the AdelaideRMF four plus
-/// `(1e-3, 2, 1e-3, 2)` and `(1e-4, 3, 1e-4, 3)`.
-pub const HOPEF_WEIGHT_SETS: [FocalWeights; 6] = [
-    FocalWeights::new(1e-3, 1.0, 1e-3, 1.0),
-    FocalWeights::new(5e-4, 1.0, 5e-4, 1.0),
-    FocalWeights::new(1e-4, 1.0, 1e-4, 1.0),
-    FocalWeights::new(5e-4, 2.0, 5e-4, 2.0),
-    FocalWeights::new(1e-3, 2.0, 1e-3, 2.0),
-    FocalWeights::new(1e-4, 3.0, 1e-4, 3.0),
-];
-
-/// The reference's `max_iters` with [`HOPEF_WEIGHT_SETS`].
-pub const HOPEF_MAX_ITERS: usize = 120;
-
-/// Parameters of [`robust_focals`].
-///
-/// Defaults (serde and [`Default`]): `f_prior` 1000 px, weights
-/// `(5e-4, 1, 5e-4, 1)`, `max_iters` 50. In the pipeline `f_prior` is
-/// `max(W, H)` of the images (method.md, Input).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct RobustFocalParams {
-    /// Prior focal length of both images, px. Default 1000.
-    pub f_prior: f64,
-    /// Weights of the deviation from the priors. Default `(5e-4, 1, 5e-4, 1)`.
-    pub weights: FocalWeights,
-    /// The iteration stops after at most `max_iters + 1` steps. Default 50.
-    pub max_iters: usize,
-}
-
-impl Default for RobustFocalParams {
-    fn default() -> Self {
-        Self {
-            f_prior: 1000.0,
-            weights: FocalWeights::default(),
-            max_iters: 50,
-        }
-    }
-}
-
-/// What to do when the robust solver fails (method.md step 4).
-///
-/// Serialised in lowercase: `"report"` or `"prior"`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum OnFailure {
-    /// Report the failure as an error (the project's default).
-    #[default]
-    Report,
-    /// Return the priors `f1 = f2 = f_prior`, `pp1 = pp2 = (0, 0)` with the
-    /// iteration count used, as the reference implementation does.
-    Prior,
-}
-
-/// An answer of the robust focal solver.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct FocalEstimate {
-    /// Focal length of image 1, px. Only `f1^2` enters the model, so the sign
-    /// carries no geometric meaning; it is reported as the iteration found it.
-    pub f1: f64,
-    /// Focal length of image 2, px (sign as for `f1`).
-    pub f2: f64,
-    /// Principal point of image 1 relative to the prior (0, 0), px.
-    pub pp1: [f64; 2],
-    /// Principal point of image 2 relative to the prior (0, 0), px.
-    pub pp2: [f64; 2],
-    /// The index k of the step at which the stopping rule fired (the first
-    /// step is k = 0, and the rule is first checked at k = 1), or
-    /// `max_iters + 1` when it never fired: PoseLib's reported count.
-    pub iterations: usize,
-    /// True when this is the prior returned for a failed solve
-    /// ([`OnFailure::Prior`]).
-    pub from_prior: bool,
-}
-
-impl FocalEstimate {
-    /// `x = (f1, u1, v1, f2, u2, v2)`.
-    pub fn unknowns(&self) -> [f64; 6] {
-        [
-            self.f1,
-            self.pp1[0],
-            self.pp1[1],
-            self.f2,
-            self.pp2[0],
-            self.pp2[1],
-        ]
-    }
-
-    /// The prior answer `f1 = f2 = f_prior`, principal points at the origin.
-    pub fn prior(f_prior: f64, iterations: usize) -> Self {
-        Self {
-            f1: f_prior,
-            f2: f_prior,
-            pp1: [0.0; 2],
-            pp2: [0.0; 2],
-            iterations,
-            from_prior: true,
-        }
-    }
-}
-
-/// The two Kruppa constraints `(g1, g2)` of method.md step 4 (Hartley &
-/// Zisserman's ratio form in the SVD of F) at the cameras
-/// `(f1, pp1)`, `(f2, pp2)`:
-///
-/// ```text
-/// F / |F| = U diag(s1, s2, 0) V^T,  w = K K^T = [[f^2+u^2, uv, u], [uv, f^2+v^2, v], [u, v, 1]]
-/// g1 = s1 (v1'w1v1)(u1'w2u2) + s2 (v1'w1v2)(u2'w2u2)
-/// g2 = s1 (v1'w1v2)(u1'w2u1) + s2 (v2'w1v2)(u1'w2u2)
-/// ```
-///
-/// (u_i columns of U: image 2; v_i columns of V: image 1). F is scaled to
-/// unit Frobenius norm. `None` when F is not finite or zero.
-pub fn kruppa_residuals(
-    f: &Matrix3<f64>,
-    f1: f64,
-    pp1: [f64; 2],
-    f2: f64,
-    pp2: [f64; 2],
-) -> Option<[f64; 2]> {
-    let k = KruppaSvd::new(f)?;
-    Some(k.eval(&[f1, pp1[0], pp1[1], f2, pp2[0], pp2[1]]))
-}
-
-/// The Kruppa residual of an estimate relative to the residual at the prior
-/// `p = (f_prior, 0, 0, f_prior, 0, 0)`: `max_i |g_i(x)| / max(max_i
-/// |g_i(p)|, 1e-8 T(p))` (the fixture's feasibility measure; a solver
-/// success has it <= [`KRUPPA_TOLERANCE`]). `T(p)` is the largest magnitude
-/// of the two products in each `g_i` at the prior, so the floor only matters
-/// when the prior itself satisfies the constraints to rounding level.
-/// `None` when F is not finite or zero.
-pub fn relative_kruppa_residual(
-    f: &Matrix3<f64>,
-    estimate: &FocalEstimate,
-    f_prior: f64,
-) -> Option<f64> {
-    let k = KruppaSvd::new(f)?;
-    Some(relative_residual(&k, &estimate.unknowns(), f_prior))
-}
-
-fn relative_residual(k: &KruppaSvd, x: &[f64; 6], f_prior: f64) -> f64 {
-    let g = k.eval(x);
-    let p = [f_prior, 0.0, 0.0, f_prior, 0.0, 0.0];
-    let g0 = k.eval(&p);
-    let num = g[0].abs().max(g[1].abs());
-    let den = g0[0]
-        .abs()
-        .max(g0[1].abs())
-        .max(1e-8 * k.term_magnitude(&p));
-    if num == 0.0 {
-        0.0
-    } else {
-        num / den
-    }
-}
-
-/// Tolerance of the final Kruppa check, relative to the prior's residual.
-pub const KRUPPA_TOLERANCE: f64 = 1e-6;
+use crate::kruppa::{relative_residual, KruppaSvd};
+use crate::params::{FocalEstimate, OnFailure, RobustFocalParams};
+use crate::simd::{self, Simd};
+use crate::KRUPPA_TOLERANCE;
 
 /// Focal lengths and principal points of both images from F (principal
 /// points at the origin, `x2^T F x1 = 0`) by the robust iterative solver of
@@ -279,37 +55,30 @@ pub fn robust_focals(
     f: &Matrix3<f64>,
     params: &RobustFocalParams,
 ) -> Result<FocalEstimate, FocalFailure> {
-    match Simd::detect() {
-        // SAFETY: `detect` returns only levels the CPU supports.
-        #[cfg(target_arch = "x86_64")]
-        Simd::Avx512 => unsafe { solve_avx512(f, params) },
-        _ => solve_to_end(f, params),
-    }
+    robust_focals_with(Simd::detect(), f, params)
 }
 
-/// [`solve_to_end`] compiled for AVX-512 as a whole, so that the scalar parts of a
-/// step (the plane, the Kruppa quartics, the candidates' polish) also get its
-/// 32 registers; the same operations in the same order, so the same bits.
-///
-/// # Safety
-/// The CPU must support [`Simd::Avx512`].
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx512f,avx512dq,avx512vl")]
-unsafe fn solve_avx512(
+/// [`robust_focals`] with the kernels (and, for [`Simd::Avx512`], the whole
+/// solve) compiled for `simd`, a level the CPU supports: every level gives
+/// the same bits ([`crate::simd`]).
+pub(crate) fn robust_focals_with(
+    simd: Simd,
     f: &Matrix3<f64>,
     params: &RobustFocalParams,
 ) -> Result<FocalEstimate, FocalFailure> {
-    solve_to_end(f, params)
+    simd::robust_focals(simd, f, params)
 }
 
-/// [`robust_focals`]: the steps from the prior to the end.
+/// [`robust_focals`]: the steps from the prior to the end, with the kernels
+/// compiled for `simd`.
 #[inline(always)]
-fn solve_to_end(
+pub(crate) fn solve_to_end(
+    simd: Simd,
     f: &Matrix3<f64>,
     params: &RobustFocalParams,
 ) -> Result<FocalEstimate, FocalFailure> {
     let k = KruppaSvd::new(f);
-    let mut solve = Solve::start(k.as_ref(), params)?;
+    let mut solve = Solve::start(k.as_ref(), params, simd)?;
     loop {
         if let Some(result) = solve.next_step() {
             return result;
@@ -319,8 +88,10 @@ fn solve_to_end(
 
 /// A robust focal solve in progress, advanced one step at a time (the
 /// iteration of [`robust_focals`]).
-struct Solve<'a> {
+pub(crate) struct Solve<'a> {
     k: &'a KruppaSvd,
+    /// The instruction set of the step's kernels.
+    simd: Simd,
     f_prior: f64,
     max_iters: usize,
     p: [f64; 6],
@@ -330,7 +101,7 @@ struct Solve<'a> {
     e_prev: f64,
     /// The index of the next step. The solve's final iteration count (success
     /// or failure) is at least this: a step k that stops or fails reports k.
-    step: usize,
+    pub(crate) step: usize,
     /// The iterates `x_{k+1}` of the last [`CYCLE_HISTORY`] steps, step k at
     /// `k % CYCLE_HISTORY`, for [`Solve::cycle_end`].
     history: [[f64; 6]; CYCLE_HISTORY],
@@ -348,8 +119,13 @@ const CYCLE_TOLERANCE: f64 = 1e-9;
 
 impl<'a> Solve<'a> {
     /// Validates the parameters and F (given by its SVD, `None` when F is
-    /// invalid) in [`robust_focals`]'s order and starts at `x_0 = p`.
-    fn start(k: Option<&'a KruppaSvd>, params: &RobustFocalParams) -> Result<Self, FocalFailure> {
+    /// invalid) in [`robust_focals`]'s order and starts at `x_0 = p`; the
+    /// steps run the kernels compiled for `simd`.
+    pub(crate) fn start(
+        k: Option<&'a KruppaSvd>,
+        params: &RobustFocalParams,
+        simd: Simd,
+    ) -> Result<Self, FocalFailure> {
         let f_prior = params.f_prior;
         if !(f_prior.is_finite() && f_prior > 0.0) {
             return Err(FocalFailure::InvalidParameter {
@@ -363,6 +139,7 @@ impl<'a> Solve<'a> {
         let p = [f_prior, 0.0, 0.0, f_prior, 0.0, 0.0];
         Ok(Self {
             k,
+            simd,
             f_prior,
             max_iters: params.max_iters,
             p,
@@ -378,9 +155,16 @@ impl<'a> Solve<'a> {
 
     /// Takes the next step; returns the solve's answer once it has ended.
     #[inline(always)]
-    fn next_step(&mut self) -> Option<Result<FocalEstimate, FocalFailure>> {
+    pub(crate) fn next_step(&mut self) -> Option<Result<FocalEstimate, FocalFailure>> {
         let step = self.step;
-        let Some(d) = solve_step(self.k, &self.p, &self.x, &self.w, &mut self.cache) else {
+        let Some(d) = solve_step(
+            self.k,
+            &self.p,
+            &self.x,
+            &self.w,
+            &mut self.cache,
+            self.simd,
+        ) else {
             return Some(Err(FocalFailure::NoRealSolution { iteration: step }));
         };
         let e: f64 = d.iter().map(|v| v * v).sum();
@@ -473,6 +257,7 @@ fn solve_step(
     x: &[f64; 6],
     w: &[f64; 6],
     cache: &mut RootCache,
+    simd: Simd,
 ) -> Option<[f64; 6]> {
     let (_, j) = k.eval_with_grad(x);
     let mut c = [[0.0; 6]; 2];
@@ -517,7 +302,7 @@ fn solve_step(
     // l = scale R^{-1} s with R = [[r11, r12], [0, r22]]; the common factor
     // `scale / r22` does not change the argmin, so it is left out.
     let m = [[r22 / r11, -r12 / r11], [0.0, 1.0]];
-    let s = min_l1_real_solution(&q1, &q2, m, cache)?;
+    let s = min_l1_real_solution(&q1, &q2, m, cache, simd)?;
     let mut d = [0.0; 6];
     for (i, di) in d.iter_mut().enumerate() {
         *di = s[0] * e1[i] + s[1] * e2[i];
@@ -551,161 +336,11 @@ pub fn robust_focals_or(
 ) -> Result<FocalEstimate, FocalFailure> {
     apply_on_failure(robust_focals(f, params), params.f_prior, on_failure)
 }
-
-/// The reference's multi-start rule (method.md step 4): run
-/// [`robust_focals`] with each weight set and keep the answer with the
-/// fewest iterations, ties broken by the smallest `|f1 - f2|`, remaining
-/// ties by the earlier weight set.
-///
-/// Failures: with [`OnFailure::Prior`] a failed solve is replaced by the
-/// prior answer (`f1 = f2 = f_prior`, its iteration count) and competes like
-/// any other candidate, as in the reference implementation; with
-/// [`OnFailure::Report`] failed solves are skipped, and the call fails only
-/// when every weight set fails, with the first weight set's failure. An empty
-/// `weight_sets` is [`FocalFailure::NoWeightSets`].
-///
-/// The answer is exactly that of running every solve to its end, but the
-/// solves advance in lockstep and one whose iteration count is certain to
-/// exceed the fewest found so far is abandoned, since it can no longer win;
-/// the SVD of F is computed once for all weight sets.
-///
-/// ```
-/// use nalgebra::{Matrix3, Rotation3, Vector3};
-/// use focal::{robust_focals_multi_start, OnFailure, ADELAIDE_WEIGHT_SETS, ADELAIDE_MAX_ITERS};
-/// let r = Rotation3::from_euler_angles(0.1, -0.25, 0.05).into_inner();
-/// let t = Vector3::new(0.4, -0.2, 1.0);
-/// let k_inv = Matrix3::from_diagonal(&Vector3::new(1.0 / 900.0, 1.0 / 900.0, 1.0));
-/// let f = k_inv.transpose() * t.cross_matrix() * r * k_inv;
-/// let best = robust_focals_multi_start(
-///     &f, 1000.0, &ADELAIDE_WEIGHT_SETS, ADELAIDE_MAX_ITERS, OnFailure::Report,
-/// ).unwrap();
-/// assert!(!best.from_prior);
-/// ```
-pub fn robust_focals_multi_start(
-    f: &Matrix3<f64>,
-    f_prior: f64,
-    weight_sets: &[FocalWeights],
-    max_iters: usize,
-    on_failure: OnFailure,
-) -> Result<FocalEstimate, FocalFailure> {
-    let svd = KruppaSvd::new(f);
-    // The answer of every weight set that ran to its end, in set order.
-    let mut outcomes: Vec<Option<Result<FocalEstimate, FocalFailure>>> =
-        vec![None; weight_sets.len()];
-    let mut live = Vec::with_capacity(weight_sets.len());
-    for (i, weights) in weight_sets.iter().enumerate() {
-        let params = RobustFocalParams {
-            f_prior,
-            weights: *weights,
-            max_iters,
-        };
-        match Solve::start(svd.as_ref(), &params) {
-            Ok(solve) => live.push((i, solve)),
-            Err(e) => outcomes[i] = Some(Err(e)),
-        }
-    }
-    // All solves advance in lockstep. Once a candidate with `n` iterations
-    // exists, a solve about to take a step k > n can only end with more
-    // iterations and can never win, so it is dropped; the candidates with the
-    // fewest iterations all run to their end, and the rule below picks among
-    // them exactly as among all answers. While no candidate exists nothing
-    // is dropped, so an all-failed `Report` call still sees every failure.
-    let mut cap = usize::MAX;
-    while !live.is_empty() {
-        live.retain_mut(|(i, solve)| {
-            if solve.step > cap {
-                return false;
-            }
-            match solve.next_step() {
-                None => true,
-                Some(result) => {
-                    let result = apply_on_failure(result, f_prior, on_failure);
-                    if let Ok(est) = &result {
-                        cap = cap.min(est.iterations);
-                    }
-                    outcomes[*i] = Some(result);
-                    false
-                }
-            }
-        });
-    }
-    let mut best: Option<FocalEstimate> = None;
-    let mut first_failure: Option<FocalFailure> = None;
-    for result in outcomes.into_iter().flatten() {
-        match result {
-            Ok(est) => {
-                let better = match &best {
-                    None => true,
-                    Some(b) => {
-                        (est.iterations, (est.f1 - est.f2).abs())
-                            < (b.iterations, (b.f1 - b.f2).abs())
-                    }
-                };
-                if better {
-                    best = Some(est);
-                }
-            }
-            Err(e) => {
-                first_failure.get_or_insert(e);
-            }
-        }
-    }
-    match (best, first_failure) {
-        (Some(b), _) => Ok(b),
-        (None, Some(e)) => Err(e),
-        (None, None) => Err(FocalFailure::NoWeightSets),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use nalgebra::{Rotation3, Vector3};
-
-    /// `K2^-T [t]x R K1^-1` scaled to unit norm, plus a deterministic
-    /// perturbation of size `noise`.
-    fn sample_f(angles: [f64; 3], t: [f64; 3], f1: f64, f2: f64, noise: f64) -> Matrix3<f64> {
-        let r = Rotation3::from_euler_angles(angles[0], angles[1], angles[2]).into_inner();
-        let k1 = Matrix3::from_diagonal(&Vector3::new(1.0 / f1, 1.0 / f1, 1.0));
-        let k2 = Matrix3::from_diagonal(&Vector3::new(1.0 / f2, 1.0 / f2, 1.0));
-        let f = k2.transpose() * Vector3::from(t).cross_matrix() * r * k1;
-        f / f.norm() + Matrix3::from_fn(|i, j| noise * ((3 * i + j) as f64 * 1.7).sin())
-    }
-
-    /// The whole-solve AVX-512 build gives the same bits as the baseline
-    /// build of the same steps, successes and failures alike.
-    #[test]
-    fn every_build_of_the_solve_gives_the_same_answer() {
-        for i in 0..60 {
-            let x = i as f64;
-            let f = sample_f(
-                [0.1 + 0.01 * x, -0.2 + 0.007 * x, 0.05],
-                [0.4 - 0.02 * x, -0.2, 1.0],
-                600.0 + 20.0 * x,
-                1400.0 - 10.0 * x,
-                [0.0, 1e-6, 1e-4][i % 3],
-            );
-            for weights in ADELAIDE_WEIGHT_SETS {
-                let params = RobustFocalParams {
-                    f_prior: 1000.0,
-                    weights,
-                    max_iters: ADELAIDE_MAX_ITERS,
-                };
-                let dispatched = robust_focals(&f, &params);
-                let baseline = solve_to_end(&f, &params);
-                match (dispatched, baseline) {
-                    (Ok(a), Ok(b)) => {
-                        assert_eq!(
-                            a.unknowns().map(f64::to_bits),
-                            b.unknowns().map(f64::to_bits)
-                        );
-                        assert_eq!(a.iterations, b.iterations);
-                    }
-                    (a, b) => assert_eq!(format!("{a:?}"), format!("{b:?}")),
-                }
-            }
-        }
-    }
+    use crate::params::{ADELAIDE_WEIGHT_SETS, HOPEF_WEIGHT_SETS};
+    use crate::test_support::sample_f;
 
     /// The pruning of the multi-start rule relies on this: a solve that ends
     /// while taking step k reports exactly k iterations (success or failure),
@@ -728,7 +363,7 @@ mod tests {
                         weights,
                         max_iters,
                     };
-                    let mut solve = Solve::start(svd.as_ref(), &params).unwrap();
+                    let mut solve = Solve::start(svd.as_ref(), &params, Simd::detect()).unwrap();
                     let (last_step, result) = loop {
                         let step = solve.step;
                         assert!(step <= max_iters);
@@ -793,7 +428,7 @@ mod tests {
                     max_iters: 100,
                 };
                 let run = |detect: bool| {
-                    let mut solve = Solve::start(svd.as_ref(), &params).unwrap();
+                    let mut solve = Solve::start(svd.as_ref(), &params, Simd::detect()).unwrap();
                     solve.detect_cycles = detect;
                     loop {
                         let step = solve.step;

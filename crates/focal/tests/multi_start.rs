@@ -1,7 +1,7 @@
 //! The failure policy and the reference's multi-start rule, checked against
 //! a naive re-statement of the rule on the PoseLib fixture's matrices.
 
-use std::path::PathBuf;
+mod support;
 
 use focal::{
     apply_on_failure, robust_focals, robust_focals_multi_start, robust_focals_or, FocalEstimate,
@@ -12,28 +12,9 @@ use nalgebra::Matrix3;
 
 /// (f_prior, F) of every row of the fixture.
 fn fixture_matrices() -> Vec<(f64, Matrix3<f64>)> {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/fixtures/focal/poselib_focals.csv");
-    assert!(
-        path.exists(),
-        "missing fixture {}: the repository expects the shared directory beside it \
-         (../shared/fixtures/focal/poselib_focals.csv)",
-        path.display()
-    );
-    let mut rdr = csv::Reader::from_path(&path).unwrap();
-    let headers = rdr.headers().unwrap().clone();
-    let col = |name: &str| headers.iter().position(|h| h == name).unwrap();
-    rdr.records()
-        .map(|rec| {
-            let rec = rec.unwrap();
-            let mut f = Matrix3::zeros();
-            for r in 0..3 {
-                for c in 0..3 {
-                    f[(r, c)] = rec[col(&format!("F{r}{c}"))].parse().unwrap();
-                }
-            }
-            (rec[col("f_prior")].parse().unwrap(), f)
-        })
+    support::load()
+        .into_iter()
+        .map(|row| (row.f_prior, row.f))
         .collect()
 }
 

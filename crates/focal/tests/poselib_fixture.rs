@@ -2,87 +2,15 @@
 //! (method.md step 4): Bougnoux's closed form and the robust iterative
 //! solver.
 
+mod support;
+
 use std::collections::BTreeMap;
-use std::path::PathBuf;
 
 use focal::{
-    bougnoux_per_image, relative_kruppa_residual, robust_focals, FocalWeights, RobustFocalParams,
+    bougnoux_per_image, relative_kruppa_residual, robust_focals, RobustFocalParams,
     KRUPPA_TOLERANCE,
 };
-use nalgebra::Matrix3;
-
-struct Row {
-    id: usize,
-    kind: String,
-    f_prior: f64,
-    f: Matrix3<f64>,
-    weights: FocalWeights,
-    max_iters: usize,
-    bougnoux: [f64; 2],
-    iter_f: [f64; 2],
-    iterations: usize,
-    status: String,
-}
-
-fn fixture_path() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/fixtures/focal/poselib_focals.csv")
-}
-
-fn load() -> Vec<Row> {
-    let path = fixture_path();
-    assert!(
-        path.exists(),
-        "missing fixture {}: the repository expects the shared directory beside it \
-         (../shared/fixtures/focal/poselib_focals.csv, written by \
-         ../shared/tools/make_focal_fixtures.py)",
-        path.display()
-    );
-    let mut rdr = csv::Reader::from_path(&path).expect("readable fixture");
-    let headers = rdr.headers().unwrap().clone();
-    let col = |name: &str| {
-        headers
-            .iter()
-            .position(|h| h == name)
-            .unwrap_or_else(|| panic!("column {name}"))
-    };
-    let num = |rec: &csv::StringRecord, name: &str| -> f64 {
-        let s = &rec[col(name)];
-        if s.is_empty() {
-            f64::NAN
-        } else {
-            s.parse().unwrap_or_else(|_| panic!("{name}: {s}"))
-        }
-    };
-    rdr.records()
-        .map(|rec| {
-            let rec = rec.unwrap();
-            let mut f = Matrix3::zeros();
-            for r in 0..3 {
-                for c in 0..3 {
-                    f[(r, c)] = num(&rec, &format!("F{r}{c}"));
-                }
-            }
-            Row {
-                id: num(&rec, "id") as usize,
-                kind: rec[col("kind")].to_string(),
-                f_prior: num(&rec, "f_prior"),
-                f,
-                weights: FocalWeights::new(
-                    num(&rec, "w_f1"),
-                    num(&rec, "w_pp1"),
-                    num(&rec, "w_f2"),
-                    num(&rec, "w_pp2"),
-                ),
-                max_iters: num(&rec, "max_iters") as usize,
-                bougnoux: [num(&rec, "bougnoux_f1"), num(&rec, "bougnoux_f2")],
-                iter_f: [num(&rec, "iter_f1"), num(&rec, "iter_f2")],
-                iterations: num(&rec, "iterations") as usize,
-                status: rec[col("poselib_status")].to_string(),
-            }
-        })
-        .collect()
-}
+use support::load;
 
 #[test]
 fn bougnoux_matches_poselib() {

@@ -1,9 +1,12 @@
 //! T-Linkage (method.md step 8): Tanimoto distance (Eq. 39) between
 //! continuous preference vectors, merged by element-wise minimum (Eq. 40).
 
+mod kernels;
+
 use crate::distance::{tanimoto_distance, tanimoto_lower_bound};
 use crate::linkage::{agglomerate, AgglomerationState, Candidate, Clustering};
 use crate::PreferenceMatrix;
+use kernels::{avx2_available, bound_margin, quantise, LANES, LEVELS};
 use std::borrow::Cow;
 use std::ops::Range;
 
@@ -40,35 +43,11 @@ pub fn t_linkage(preferences: &PreferenceMatrix, min_cluster_size: usize) -> Clu
     agglomerate(ContinuousState::new(preferences), min_cluster_size)
 }
 
-/// Quantisation levels of the bound matrix: a preference φ is stored as an
-/// integer `q ≥ 65535 φ` (`q = 0` iff `φ = 0`).
-const LEVELS: f64 = 65535.0;
-/// The slot count of the bound matrix is a multiple of this.
-const LANES: usize = 16;
-/// Products summed in f32 before the partial sum is added to the f64 total.
-const CHUNK: usize = 64;
 /// Marks a slot that holds no active cluster.
 const DEAD: u32 = u32::MAX;
 /// The bound matrix is compacted when half of its slots are dead and it has
 /// more slots than this.
 const MIN_COMPACTION_WIDTH: usize = 64;
-
-/// `q = ⌈65535 φ⌉` computed so that `q ≥ 65535 φ` holds exactly (the
-/// product is inflated by 2⁻⁵⁰ before rounding up), capped at 65535 (`φ ≤ 1`).
-#[inline]
-fn quantise(v: f64) -> u16 {
-    if v > 0.0 {
-        let scaled = (v * LEVELS * (1.0 + 4.0 * f64::EPSILON)).min(LEVELS);
-        let q = scaled as u16; // truncation: ⌊scaled⌋
-        if f64::from(q) < scaled {
-            q + 1
-        } else {
-            q
-        }
-    } else {
-        0
-    }
-}
 
 /// Inner products of exact preference vectors, as sparse sorted lists:
 /// `Σ_j p_j · q_j` over the common hypotheses in ascending order — the
@@ -130,25 +109,6 @@ struct ContinuousState<'a> {
     avx2: bool,
 }
 
-/// `γ_n = n u / (1 − n u)`, the classic bound on the relative error of a sum
-/// of n non-negative terms in a format of unit roundoff u.
-fn gamma(n: f64, unit_roundoff: f64) -> f64 {
-    n * unit_roundoff / (1.0 - n * unit_roundoff)
-}
-
-/// The factor that turns a computed bound sum into a certified upper bound
-/// of the computed inner product, for M hypotheses (see
-/// [`ContinuousState::dot_upper`]):
-/// `(1 + γ⁶⁴_(M+1)) (1 + u₆₄)⁴ / ((1 − γ³²_(C+1)) (1 − γ⁶⁴_M))`, inflated by
-/// `1 + 2⁻⁴⁸` for the rounding of this very evaluation.
-fn bound_margin(n_hypotheses: usize) -> f64 {
-    let (u32_, u64_) = (f64::from(f32::EPSILON) / 2.0, f64::EPSILON / 2.0);
-    let m = n_hypotheses as f64;
-    let numerator = (1.0 + gamma(m + 1.0, u64_)) * (1.0 + u64_).powi(4);
-    let denominator = (1.0 - gamma(CHUNK as f64 + 1.0, u32_)) * (1.0 - gamma(m, u64_));
-    numerator / denominator * (1.0 + 2f64.powi(-48))
-}
-
 impl<'a> ContinuousState<'a> {
     fn new(preferences: &'a PreferenceMatrix) -> Self {
         let n = preferences.n_points();
@@ -192,7 +152,7 @@ impl<'a> ContinuousState<'a> {
     ///
     /// In exact arithmetic `Σ_j q_pj q_qj / 65535² ≥ <p, q>`, since every
     /// `q ≥ 65535 φ`. The kernels form the products and partial sums of at
-    /// most [`CHUNK`] terms in f32 (relative loss at most `γ³²_(C+1)`, all
+    /// most [`kernels::CHUNK`] terms in f32 (relative loss at most `γ³²_(C+1)`, all
     /// terms being non-negative integers-valued products, so no underflow),
     /// then add the partial sums in f64 (loss at most `γ⁶⁴_M`); the ordered
     /// f64 sum of the exact inner product exceeds the real value by at most
@@ -276,150 +236,13 @@ impl<'a> ContinuousState<'a> {
     }
 }
 
-/// `partial[s] += q · row[s]` for every slot s, in f32.
-#[inline(always)]
-fn axpy_bounds(partial: &mut [f32], q: f32, row: &[u16]) {
-    for (a, &r) in partial.iter_mut().zip(row) {
-        *a += q * f32::from(r);
-    }
-}
-
-/// `total[s] += partial[s]` in f64, then `partial[s] = 0`.
-#[inline(always)]
-fn flush(total: &mut [f64], partial: &mut [f32]) {
-    for (t, p) in total.iter_mut().zip(partial.iter_mut()) {
-        *t += f64::from(*p);
-        *p = 0.0;
-    }
-}
-
-/// Lower bounds of the initial distances of the rows in `rows` (at most
-/// [`crate::linkage::ROWS_PER_TASK`] consecutive points) to every later point.
-#[inline(always)]
-fn initial_block(
-    state: &ContinuousState,
-    rows: Range<usize>,
-    out: &mut Vec<(u32, u32, Candidate)>,
-) {
-    let (n, width) = (state.n, state.width);
-    let first = rows.start;
-    let columns = width - first;
-    let mut total = vec![0.0f64; rows.len() * columns];
-    let mut partial = vec![0.0f32; rows.len() * columns];
-    let mut counts = vec![0usize; rows.len()];
-    // The hypotheses preferred by at least one row, ascending.
-    let m = state.bounds.len() / width.max(1);
-    let mut preferred = vec![false; m];
-    for i in rows.clone() {
-        for &j in state.index[i].iter() {
-            preferred[j as usize] = true;
-        }
-    }
-    for j in (0..m).filter(|&j| preferred[j]) {
-        let row = &state.bounds[j * width + first..(j + 1) * width];
-        for (x, (sums, count)) in partial
-            .chunks_exact_mut(columns)
-            .zip(counts.iter_mut())
-            .enumerate()
-        {
-            let q = row[x];
-            if q != 0 {
-                axpy_bounds(&mut sums[x + 1..], f32::from(q), &row[x + 1..]);
-                *count += 1;
-                if *count == CHUNK {
-                    flush(&mut total[x * columns..(x + 1) * columns], sums);
-                    *count = 0;
-                }
-            }
-        }
-    }
-    flush(&mut total, &mut partial);
-    for (x, sums) in total.chunks_exact(columns).enumerate() {
-        let i = first + x;
-        for k in i + 1..n {
-            let candidate = state.lower_bound(sums[k - first], state.norms[i], state.norms[k]);
-            if candidate.d < 1.0 {
-                out.push((i as u32, k as u32, candidate));
-            }
-        }
-    }
-}
-
-/// Bound sums `Σ_j q_cj · q_sj` of the (already merged) `cluster` with every
-/// slot s, into `state.acc`.
-#[inline(always)]
-fn merged_sweep(state: &mut ContinuousState, cluster: usize) {
-    let width = state.width;
-    let mut multipliers = std::mem::take(&mut state.multipliers);
-    multipliers.clear();
-    multipliers.extend(
-        state.index[cluster]
-            .iter()
-            .zip(state.value[cluster].iter())
-            .map(|(&j, &v)| (j, f32::from(quantise(v)))),
-    );
-    state.acc.fill(0.0);
-    for chunk in multipliers.chunks(CHUNK) {
-        for &(j, q) in chunk {
-            let row = &state.bounds[j as usize * width..(j as usize + 1) * width];
-            axpy_bounds(&mut state.partial, q, row);
-        }
-        flush(&mut state.acc, &mut state.partial);
-    }
-    state.multipliers = multipliers;
-}
-
-/// [`initial_block`] compiled for AVX2.
-///
-/// # Safety
-/// The CPU must support AVX2.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn initial_block_avx2(
-    state: &ContinuousState,
-    rows: Range<usize>,
-    out: &mut Vec<(u32, u32, Candidate)>,
-) {
-    initial_block(state, rows, out)
-}
-
-/// [`merged_sweep`] compiled for AVX2.
-///
-/// # Safety
-/// The CPU must support AVX2.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn merged_sweep_avx2(state: &mut ContinuousState, cluster: usize) {
-    merged_sweep(state, cluster)
-}
-
-/// Whether the AVX2 versions of the bound kernels can run. They perform the
-/// same operations in the same order as the portable ones (no fused
-/// multiply-add), and bounds only decide which pairs get an exact distance
-/// computed, never its value.
-fn avx2_available() -> bool {
-    #[cfg(target_arch = "x86_64")]
-    {
-        std::arch::is_x86_feature_detected!("avx2")
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    {
-        false
-    }
-}
-
 impl AgglomerationState for ContinuousState<'_> {
     fn n_clusters(&self) -> usize {
         self.n
     }
 
     fn initial_distances(&self, rows: Range<usize>, out: &mut Vec<(u32, u32, Candidate)>) {
-        #[cfg(target_arch = "x86_64")]
-        if self.avx2 {
-            // SAFETY: `avx2` is set only when the CPU supports AVX2.
-            return unsafe { initial_block_avx2(self, rows, out) };
-        }
-        initial_block(self, rows, out)
+        kernels::initial_bounds(self, rows, out)
     }
 
     fn exact_distance(&mut self, i: usize, k: usize) -> f64 {
@@ -441,15 +264,7 @@ impl AgglomerationState for ContinuousState<'_> {
     ) {
         let norm = self.merge_exact(kept, removed);
         self.norms[kept] = norm;
-        if self.avx2 {
-            #[cfg(target_arch = "x86_64")]
-            // SAFETY: `avx2` is set only when the CPU supports AVX2.
-            unsafe {
-                merged_sweep_avx2(self, kept)
-            };
-        } else {
-            merged_sweep(self, kept);
-        }
+        kernels::merged_bounds(self, kept);
         let own_slot = self.slot_of_cluster[kept] as usize;
         for (s, &c) in self.cluster_of_slot.iter().enumerate() {
             if c == DEAD || s == own_slot || !active[c as usize] {

@@ -1,0 +1,197 @@
+//! The named generator configurations (`sctl synth --preset`, the
+//! `preset` of a config's synthetic dataset) and their scene lists.
+
+use super::{generate_hopef_scene, BackgroundParams, SyntheticParams, SyntheticScene};
+use crate::hopef_synth::{self, HopefParams};
+use crate::DatasetError;
+use serde::Serialize;
+
+/// Named generator configurations.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Preset {
+    /// `hopef-like`: HOPE-F's structure, categories 1–4 objects × 100 test
+    /// scenes (folders 0900–0999), default parameters: 400 scenes.
+    HopefLike,
+    /// `quick`: 4 small scenes (categories 1 and 2, folders 0900–0901, 30–50
+    /// points per object), for tests and a first run in seconds.
+    Quick,
+    /// `kitti-like`: static background under ego-motion plus 1–2 movers
+    /// (categories 1 and 2, folders 0900–0909): 20 scenes.
+    KittiLike,
+    /// `hopef`: HOPE-F's own process ([`crate::hopef_synth`]), categories
+    /// 1–4 × folders 0000–0999 (train 0000–0799, validation 0800–0899, test
+    /// 0900–0999): 4000 scenes.
+    Hopef,
+}
+
+/// The parameters of a preset's generator.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum PresetParams {
+    /// The generator of this module ([`generate_hopef_scene`]).
+    Synthetic(SyntheticParams),
+    /// The HOPE-F-faithful generator ([`hopef_synth::generate_scene`]).
+    Hopef(HopefParams),
+}
+
+impl PresetParams {
+    /// Checks the parameters (see [`SyntheticParams::validate`] and
+    /// [`HopefParams::validate`]).
+    pub fn validate(&self) -> Result<(), DatasetError> {
+        match self {
+            PresetParams::Synthetic(p) => p.validate(),
+            PresetParams::Hopef(p) => p.validate(),
+        }
+    }
+
+    /// Generates scene `<category>/<index>` of a dataset made with `seed`.
+    pub fn generate_scene(
+        &self,
+        seed: u64,
+        category: u32,
+        index: u32,
+    ) -> Result<SyntheticScene, DatasetError> {
+        match self {
+            PresetParams::Synthetic(p) => generate_hopef_scene(p, seed, category, index),
+            PresetParams::Hopef(p) => hopef_synth::generate_scene(p, seed, category, index),
+        }
+    }
+
+    /// The parameters of this module's generator, if they are those.
+    pub fn as_synthetic(&self) -> Option<&SyntheticParams> {
+        match self {
+            PresetParams::Synthetic(p) => Some(p),
+            PresetParams::Hopef(_) => None,
+        }
+    }
+}
+
+impl Preset {
+    /// All presets.
+    pub const ALL: [Preset; 4] = [
+        Preset::HopefLike,
+        Preset::Quick,
+        Preset::KittiLike,
+        Preset::Hopef,
+    ];
+
+    /// The preset's name (`hopef-like`, `quick`, `kitti-like`, `hopef`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Preset::HopefLike => "hopef-like",
+            Preset::Quick => "quick",
+            Preset::KittiLike => "kitti-like",
+            Preset::Hopef => "hopef",
+        }
+    }
+
+    /// The preset called `name`.
+    ///
+    /// ```
+    /// use datasets::synthetic::Preset;
+    /// assert_eq!(Preset::from_name("quick"), Some(Preset::Quick));
+    /// assert_eq!(Preset::from_name("nope"), None);
+    /// ```
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|p| p.name() == name)
+    }
+
+    /// The generator parameters.
+    pub fn params(self) -> PresetParams {
+        PresetParams::Synthetic(match self {
+            Preset::HopefLike => SyntheticParams::default(),
+            Preset::Quick => SyntheticParams {
+                points_per_object: [30, 50],
+                min_points_per_object: 20,
+                ..SyntheticParams::default()
+            },
+            Preset::KittiLike => SyntheticParams {
+                background: BackgroundParams {
+                    enabled: true,
+                    ..BackgroundParams::default()
+                },
+                ..SyntheticParams::default()
+            },
+            Preset::Hopef => return PresetParams::Hopef(HopefParams::default()),
+        })
+    }
+
+    /// Reads a table of this preset's generator parameters (e.g. its own,
+    /// serialised, with a user's overrides merged in).
+    ///
+    /// ```
+    /// use datasets::synthetic::{Preset, PresetParams};
+    /// let table: toml::Value = toml::from_str("mismatch_share = [0.2, 0.3]").unwrap();
+    /// let PresetParams::Hopef(p) = Preset::Hopef.params_from_toml(table).unwrap() else {
+    ///     panic!("hopef parameters expected");
+    /// };
+    /// assert_eq!(p.mismatch_share, [0.2, 0.3]);
+    /// ```
+    pub fn params_from_toml(self, table: toml::Value) -> Result<PresetParams, toml::de::Error> {
+        match self.params() {
+            PresetParams::Synthetic(_) => table.try_into().map(PresetParams::Synthetic),
+            PresetParams::Hopef(_) => table.try_into().map(PresetParams::Hopef),
+        }
+    }
+
+    /// The category folders (numbers of moving objects).
+    pub fn categories(self) -> Vec<u32> {
+        match self {
+            Preset::HopefLike | Preset::Hopef => vec![1, 2, 3, 4],
+            Preset::Quick | Preset::KittiLike => vec![1, 2],
+        }
+    }
+
+    /// The scene folder indices of each category.
+    pub fn indices(self) -> std::ops::RangeInclusive<u32> {
+        match self {
+            Preset::HopefLike => 900..=999,
+            Preset::Quick => 900..=901,
+            Preset::KittiLike => 900..=909,
+            Preset::Hopef => 0..=999,
+        }
+    }
+
+    /// Number of scenes the preset generates.
+    pub fn len(self) -> usize {
+        self.categories().len() * self.indices().count()
+    }
+
+    /// Always false: every preset has scenes.
+    pub fn is_empty(self) -> bool {
+        self.len() == 0
+    }
+
+    /// Generates all scenes of the preset from `seed` with `params`
+    /// (normally [`Preset::params`]), calling `progress(done, total)` after
+    /// each scene.
+    pub fn generate_with(
+        self,
+        params: &PresetParams,
+        seed: u64,
+        mut progress: impl FnMut(usize, usize),
+    ) -> Result<Vec<SyntheticScene>, DatasetError> {
+        let total = self.len();
+        let mut out = Vec::with_capacity(total);
+        for category in self.categories() {
+            for index in self.indices() {
+                out.push(params.generate_scene(seed, category, index)?);
+                progress(out.len(), total);
+            }
+        }
+        Ok(out)
+    }
+
+    /// Generates all scenes of the preset from `seed` with its own parameters.
+    ///
+    /// ```
+    /// use datasets::synthetic::Preset;
+    /// let scenes = Preset::Quick.generate(7)?;
+    /// let names: Vec<&str> = scenes.iter().map(|s| s.scene.name.as_str()).collect();
+    /// assert_eq!(names, ["1/0900", "1/0901", "2/0900", "2/0901"]);
+    /// # Ok::<(), datasets::DatasetError>(())
+    /// ```
+    pub fn generate(self, seed: u64) -> Result<Vec<SyntheticScene>, DatasetError> {
+        self.generate_with(&self.params(), seed, |_, _| {})
+    }
+}
