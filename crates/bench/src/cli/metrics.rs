@@ -4,8 +4,8 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::metrics::{ClusteringMetrics, MetricsError};
 use anyhow::{bail, Context};
-use bench::metrics::{ClusteringMetrics, MetricsError};
 
 /// Options.
 #[derive(clap::Args)]
