@@ -40,9 +40,9 @@ pub use colour::{cluster_colour, OUTLIER_COLOUR, PEAK_COLOUR, TRUE_FOCAL_COLOUR}
 pub use focal_error::focal_error_histogram;
 pub use focal_kde::{focal_kde, FocalKdePlot};
 pub use me_scatter::{me_scatter, me_scene_pairs};
-pub use me_vs_samples::{me_vs_samples, me_vs_samples_series};
 #[cfg(test)]
 pub use me_vs_samples::Series;
+pub use me_vs_samples::{me_vs_samples, me_vs_samples_series};
 use std::path::{Path, PathBuf};
 use thiserror::Error;
 
