@@ -4,7 +4,7 @@
 
 use crate::config::{Method, PipelineConfig};
 use crate::experiment::{Evaluator, ScenePlots};
-use crate::metrics::{frob_score, ClusteringMetrics};
+use metrics::{frob_score, ClusteringMetrics};
 use crate::output::{file_safe, SceneResult, StageTimings};
 use crate::pipeline::{
     estimate_hypothesis_focals, fit_cluster, generate_hypotheses, segment_with,

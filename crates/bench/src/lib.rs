@@ -15,7 +15,6 @@ pub mod dataset;
 mod evaluate;
 mod experiment;
 mod focal_file;
-use metrics;
 mod output;
 pub mod pipeline;
 mod plots;

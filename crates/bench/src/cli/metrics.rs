@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::metrics::{ClusteringMetrics, MetricsError};
+use metrics::{ClusteringMetrics, MetricsError};
 use anyhow::{bail, Context};
 
 /// Options.

@@ -5,7 +5,7 @@
 
 use super::{merge, run_experiment, Evaluator, Merged, RunOptions, ScenePlots, Shard};
 use crate::config::{ExperimentConfig, Method, PipelineConfig};
-use crate::metrics::ClusteringMetrics;
+use metrics::ClusteringMetrics;
 use crate::output::{SceneResult, StageTimings};
 use anyhow::{bail, Result};
 use segmentation::HypothesisCounts;

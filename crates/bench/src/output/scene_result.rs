@@ -2,7 +2,7 @@
 //! struct's fields are the columns, in order, and their serde attributes
 //! the number formats. Adding a column is adding a field here.
 
-use crate::metrics::ClusteringMetrics;
+use metrics::ClusteringMetrics;
 use anyhow::{Context, Result};
 use segmentation::HypothesisCounts;
 use serde::{Deserialize, Serialize};
