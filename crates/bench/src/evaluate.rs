@@ -4,7 +4,6 @@
 
 use crate::config::{Method, PipelineConfig};
 use crate::experiment::{Evaluator, ScenePlots};
-use metrics::{frob_score, ClusteringMetrics};
 use crate::output::{file_safe, SceneResult, StageTimings};
 use crate::pipeline::{
     estimate_hypothesis_focals, fit_cluster, generate_hypotheses, segment_with,
@@ -14,6 +13,7 @@ use crate::plots::{clusters_over_images, focal_kde, FocalKdePlot};
 use anyhow::Result;
 use datasets::Scene;
 use geometry::Correspondences;
+use metrics::{frob_score, ClusteringMetrics};
 use nalgebra::Matrix3;
 use segmentation::{FocalKey, HypothesisKey};
 use std::collections::{BTreeMap, VecDeque};

@@ -4,8 +4,8 @@
 
 use std::path::{Path, PathBuf};
 
-use metrics::{ClusteringMetrics, MetricsError};
 use anyhow::{bail, Context};
+use metrics::{ClusteringMetrics, MetricsError};
 
 /// Options.
 #[derive(clap::Args)]

@@ -5,9 +5,9 @@
 
 use super::{merge, run_experiment, Evaluator, Merged, RunOptions, ScenePlots, Shard};
 use crate::config::{ExperimentConfig, Method, PipelineConfig};
-use metrics::ClusteringMetrics;
 use crate::output::{SceneResult, StageTimings};
 use anyhow::{bail, Result};
+use metrics::ClusteringMetrics;
 use segmentation::HypothesisCounts;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};

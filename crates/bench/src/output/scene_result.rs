@@ -2,8 +2,8 @@
 //! struct's fields are the columns, in order, and their serde attributes
 //! the number formats. Adding a column is adding a field here.
 
-use metrics::ClusteringMetrics;
 use anyhow::{Context, Result};
+use metrics::ClusteringMetrics;
 use segmentation::HypothesisCounts;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
