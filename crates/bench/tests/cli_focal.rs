@@ -11,7 +11,7 @@ fn focal_reads_the_poselib_fixture_and_agrees_with_it() {
     let path = &fixture.path;
     let out = sctl()
         .args(["focal", "--input"])
-        .arg(&path)
+        .arg(path)
         .output()
         .unwrap();
     assert!(

@@ -67,7 +67,7 @@ impl ClustersLayout {
     /// The canvas pixel of image point `p` (pixel coordinates, pixel
     /// centres at integers) in image `view` (0 or 1):
     /// `origin + round((p + 0.5) · scale − 0.5)`.
-    pub fn to_canvas(&self, view: usize, p: [f64; 2]) -> (i32, i32) {
+    pub fn to_canvas(self, view: usize, p: [f64; 2]) -> (i32, i32) {
         let (ox, oy) = self.origins[view.min(1)];
         let map = |v: f64| ((v + 0.5) * self.scale - 0.5).round() as i32;
         (ox + map(p[0]), oy + map(p[1]))

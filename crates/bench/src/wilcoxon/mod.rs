@@ -545,7 +545,7 @@ mod examples {
         // Subsets of {1, 2, 3}: sums 0, 1, 2, 3, 3, 4, 5, 6.
         assert_eq!(
             signed_rank_null_pmf(3),
-            vec![1.0, 1.0, 1.0, 2.0, 1.0, 1.0, 1.0]
+            [1.0, 1.0, 1.0, 2.0, 1.0, 1.0, 1.0]
                 .iter()
                 .map(|c| c / 8.0)
                 .collect::<Vec<_>>()
