@@ -1,7 +1,7 @@
 //! `sctl compare`: a paired comparison of two runs on their common scenes
 //! (means, wins and losses, Wilcoxon signed-rank p-values).
 
-use crate::output::{CsvTable, PER_SCENE_FIELDS, PER_SCENE_FILE};
+use crate::output::{CsvTable, SceneResult, PER_SCENE_FILE};
 use crate::report::{lower_is_better, paired, summary_scale, SUMMARY_METRICS};
 use crate::wilcoxon::{wilcoxon, Alternative, Mode, WilcoxonError, WilcoxonResult};
 use anyhow::{bail, Context, Result};
@@ -19,18 +19,35 @@ pub struct RunSide {
     pub values: Vec<(String, f64)>,
 }
 
+/// A selection of a combination by one parameter: `KEY=VALUE`.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Filter {
+    /// The parameter column.
+    pub key: String,
+    /// Its value, as written in `per_scene.csv`.
+    pub value: String,
+}
+
+/// A `--a` / `--b` argument that is not `KEY=VALUE`.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("`{0}` is not KEY=VALUE (e.g. method=semical)")]
+pub struct FilterError(String);
+
 /// Parses `KEY=VALUE`.
-pub fn parse_filter(s: &str) -> std::result::Result<(String, String), String> {
+pub fn parse_filter(s: &str) -> std::result::Result<Filter, FilterError> {
     s.split_once('=')
-        .map(|(k, v)| (k.trim().to_string(), v.trim().to_string()))
-        .filter(|(k, _)| !k.is_empty())
-        .ok_or_else(|| format!("`{s}` is not KEY=VALUE (e.g. method=semical)"))
+        .map(|(k, v)| Filter {
+            key: k.trim().to_string(),
+            value: v.trim().to_string(),
+        })
+        .filter(|f| !f.key.is_empty())
+        .ok_or_else(|| FilterError(s.to_string()))
 }
 
 /// Reads the combination of run `path` (a run directory or its
 /// `per_scene.csv`) selected by `filters`; the filters must leave exactly
 /// one combination.
-pub fn load_side(path: &Path, metric: &str, filters: &[(String, String)]) -> Result<RunSide> {
+pub fn load_side(path: &Path, metric: &str, filters: &[Filter]) -> Result<RunSide> {
     let file = if path.is_dir() {
         path.join(PER_SCENE_FILE)
     } else {
@@ -38,7 +55,7 @@ pub fn load_side(path: &Path, metric: &str, filters: &[(String, String)]) -> Res
     };
     let table = CsvTable::read(&file)?;
     let scene_col = table.require_column("scene", &file)?;
-    if table.header[scene_col..] != PER_SCENE_FIELDS {
+    if table.header[scene_col..] != SceneResult::fields() {
         bail!(
             "{}: not a per_scene.csv written by sctl run",
             file.display()
@@ -47,7 +64,7 @@ pub fn load_side(path: &Path, metric: &str, filters: &[(String, String)]) -> Res
     let params = &table.header[..scene_col];
     let metric_col = table.require_column(metric, &file)?;
     let mut cols = Vec::new();
-    for (key, value) in filters {
+    for Filter { key, value } in filters {
         let col = params.iter().position(|p| p == key).with_context(|| {
             format!(
                 "{}: no parameter column `{key}` (columns: {})",
@@ -240,7 +257,10 @@ mod tests {
     fn filters_parse() {
         assert_eq!(
             parse_filter("method=semical").unwrap(),
-            ("method".into(), "semical".into())
+            Filter {
+                key: "method".into(),
+                value: "semical".into()
+            }
         );
         assert!(parse_filter("method").is_err());
         assert!(parse_filter("=x").is_err());

@@ -79,97 +79,11 @@ pub fn load_scenes(
     images: bool,
 ) -> Result<Vec<Scene>> {
     let root = data_root(dataset, data_root_flag);
-    let wanted = dataset.scenes.as_deref();
     let scenes = match dataset.kind {
-        DatasetKind::Adelaidermf => {
-            let data = AdelaideRmf::open(root.join("adelaidermf").join("F"))?;
-            let names: Vec<(u32, &str)> = data
-                .scene_names()
-                .iter()
-                .enumerate()
-                .filter(|(i, _)| in_range(dataset.index_range, *i as u32))
-                .map(|(i, n)| (i as u32, *n))
-                .collect();
-            let names = select_named(names, |(_, n)| n.to_string(), wanted)?;
-            let options = adelaidermf::LoadOptions { images };
-            names
-                .par_iter()
-                .map(|(_, n)| data.load_with(n, options).map_err(anyhow::Error::from))
-                .collect::<Result<Vec<_>>>()?
-        }
-        DatasetKind::Hopef => {
-            let data = HopeF::open(root.join("hopef"))?;
-            let selection = match dataset.split {
-                Some(split) => Selection::Split(split.into()),
-                None => Selection::All,
-            };
-            let categories = dataset.categories.clone().unwrap_or_default();
-            let refs: Vec<hopef::SceneRef> = data
-                .select(&categories, &selection)?
-                .into_iter()
-                .filter(|r| in_range(dataset.index_range, r.index))
-                .collect();
-            let refs = select_named(refs, hopef::SceneRef::name, wanted)?;
-            let options = hopef::LoadOptions { images };
-            refs.par_iter()
-                .map(|r| data.load(r, options).map_err(anyhow::Error::from))
-                .collect::<Result<Vec<_>>>()?
-        }
-        DatasetKind::Synthetic => {
-            let preset_name = dataset.preset.as_deref().unwrap_or(DEFAULT_PRESET);
-            let preset = Preset::from_name(preset_name).with_context(|| {
-                let known: Vec<&str> = Preset::ALL.iter().map(|p| p.name()).collect();
-                format!(
-                    "dataset.preset: unknown preset `{preset_name}` (known: {})",
-                    known.join(", ")
-                )
-            })?;
-            let seed = dataset.generator_seed.unwrap_or(DEFAULT_GENERATOR_SEED);
-            let mut refs: Vec<(u32, u32)> = Vec::new();
-            for category in preset.categories() {
-                if dataset
-                    .categories
-                    .as_ref()
-                    .is_some_and(|c| !c.contains(&category))
-                {
-                    continue;
-                }
-                let split = dataset.split.map(hopef::Split::from);
-                refs.extend(
-                    preset
-                        .indices()
-                        .filter(|&i| in_range(dataset.index_range, i))
-                        .filter(|i| split.map_or(true, |s| s.indices().contains(i)))
-                        .map(|i| (category, i)),
-                );
-            }
-            let refs = select_named(refs, |&(c, i)| hopef::scene_name(c, i), wanted)?;
-            let params = preset.params();
-            refs.par_iter()
-                .map(|&(c, i)| {
-                    params
-                        .generate_scene(seed, c, i)
-                        .map(|s| s.scene)
-                        .map_err(anyhow::Error::from)
-                })
-                .collect::<Result<Vec<_>>>()?
-        }
-        DatasetKind::Csv => {
-            let files = dataset.files.clone().unwrap_or_default();
-            let size = dataset.width.zip(dataset.height);
-            let scenes = files
-                .iter()
-                .map(|f| {
-                    let path = if f.is_absolute() {
-                        f.clone()
-                    } else {
-                        root.join(f)
-                    };
-                    load_match_file(&path, size)
-                })
-                .collect::<Result<Vec<_>>>()?;
-            select_named(scenes, |s| s.name.clone(), wanted)?
-        }
+        DatasetKind::Adelaidermf => adelaidermf_scenes(dataset, &root, images)?,
+        DatasetKind::Hopef => hopef_scenes(dataset, &root, images)?,
+        DatasetKind::Synthetic => synthetic_scenes(dataset)?,
+        DatasetKind::Csv => csv_scenes(dataset, &root)?,
     };
     if scenes.is_empty() {
         bail!(
@@ -188,6 +102,107 @@ pub fn load_scenes(
         }
     }
     Ok(scenes)
+}
+
+/// The selected AdelaideRMF sequences.
+fn adelaidermf_scenes(dataset: &DatasetConfig, root: &Path, images: bool) -> Result<Vec<Scene>> {
+    let wanted = dataset.scenes.as_deref();
+    let data = AdelaideRmf::open(root.join("adelaidermf").join("F"))?;
+    let names: Vec<(u32, &str)> = data
+        .scene_names()
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| in_range(dataset.index_range, *i as u32))
+        .map(|(i, n)| (i as u32, *n))
+        .collect();
+    let names = select_named(names, |(_, n)| n.to_string(), wanted)?;
+    let options = adelaidermf::LoadOptions { images };
+    names
+        .par_iter()
+        .map(|(_, n)| data.load_with(n, options).map_err(anyhow::Error::from))
+        .collect::<Result<Vec<_>>>()
+}
+
+/// The selected HOPE-F scenes.
+fn hopef_scenes(dataset: &DatasetConfig, root: &Path, images: bool) -> Result<Vec<Scene>> {
+    let wanted = dataset.scenes.as_deref();
+    let data = HopeF::open(root.join("hopef"))?;
+    let selection = match dataset.split {
+        Some(split) => Selection::Split(split.into()),
+        None => Selection::All,
+    };
+    let categories = dataset.categories.clone().unwrap_or_default();
+    let refs: Vec<hopef::SceneRef> = data
+        .select(&categories, &selection)?
+        .into_iter()
+        .filter(|r| in_range(dataset.index_range, r.index))
+        .collect();
+    let refs = select_named(refs, hopef::SceneRef::name, wanted)?;
+    let options = hopef::LoadOptions { images };
+    refs.par_iter()
+        .map(|r| data.load(r, options).map_err(anyhow::Error::from))
+        .collect::<Result<Vec<_>>>()
+}
+
+/// The selected scenes of the synthetic generator.
+fn synthetic_scenes(dataset: &DatasetConfig) -> Result<Vec<Scene>> {
+    let wanted = dataset.scenes.as_deref();
+    let preset_name = dataset.preset.as_deref().unwrap_or(DEFAULT_PRESET);
+    let preset = Preset::from_name(preset_name).with_context(|| {
+        let known: Vec<&str> = Preset::ALL.iter().map(|p| p.name()).collect();
+        format!(
+            "dataset.preset: unknown preset `{preset_name}` (known: {})",
+            known.join(", ")
+        )
+    })?;
+    let seed = dataset.generator_seed.unwrap_or(DEFAULT_GENERATOR_SEED);
+    let mut refs: Vec<(u32, u32)> = Vec::new();
+    for category in preset.categories() {
+        if dataset
+            .categories
+            .as_ref()
+            .is_some_and(|c| !c.contains(&category))
+        {
+            continue;
+        }
+        let split = dataset.split.map(hopef::Split::from);
+        refs.extend(
+            preset
+                .indices()
+                .filter(|&i| in_range(dataset.index_range, i))
+                .filter(|i| split.map_or(true, |s| s.indices().contains(i)))
+                .map(|i| (category, i)),
+        );
+    }
+    let refs = select_named(refs, |&(c, i)| hopef::scene_name(c, i), wanted)?;
+    let params = preset.params();
+    refs.par_iter()
+        .map(|&(c, i)| {
+            params
+                .generate_scene(seed, c, i)
+                .map(|s| s.scene)
+                .map_err(anyhow::Error::from)
+        })
+        .collect::<Result<Vec<_>>>()
+}
+
+/// The selected user match files.
+fn csv_scenes(dataset: &DatasetConfig, root: &Path) -> Result<Vec<Scene>> {
+    let wanted = dataset.scenes.as_deref();
+    let files = dataset.files.clone().unwrap_or_default();
+    let size = dataset.width.zip(dataset.height);
+    let scenes = files
+        .iter()
+        .map(|f| {
+            let path = if f.is_absolute() {
+                f.clone()
+            } else {
+                root.join(f)
+            };
+            load_match_file(&path, size)
+        })
+        .collect::<Result<Vec<_>>>()?;
+    select_named(scenes, |s| s.name.clone(), wanted)
 }
 
 /// Loads a user match file: `.txt` as AdelaideRMF-style `x1 y1 x2 y2

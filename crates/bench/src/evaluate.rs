@@ -4,7 +4,6 @@
 
 use crate::config::{Method, PipelineConfig};
 use crate::experiment::{Evaluator, ScenePlots};
-use crate::metrics::{frob_score, ClusteringMetrics};
 use crate::output::{file_safe, SceneResult, StageTimings};
 use crate::pipeline::{
     estimate_hypothesis_focals, fit_cluster, generate_hypotheses, segment_with,
@@ -14,6 +13,7 @@ use crate::plots::{clusters_over_images, focal_kde, FocalKdePlot};
 use anyhow::Result;
 use datasets::Scene;
 use geometry::Correspondences;
+use metrics::{frob_score, ClusteringMetrics};
 use nalgebra::Matrix3;
 use segmentation::{FocalKey, HypothesisKey};
 use std::collections::{BTreeMap, VecDeque};
@@ -105,13 +105,6 @@ pub fn ground_truth_models(scene: &Scene) -> Vec<Matrix3<f64>> {
 
 /// The indices of the points of each ground-truth motion (labels > 0), by
 /// label in increasing order.
-///
-/// ```
-/// let motions = bench::evaluate::motion_indices(&[1, 0, 2, 1]);
-/// assert_eq!(motions[&1], vec![0, 3]);
-/// assert_eq!(motions[&2], vec![2]);
-/// assert_eq!(motions.len(), 2);
-/// ```
 pub fn motion_indices(labels: &[i32]) -> BTreeMap<i32, Vec<usize>> {
     let mut motions: BTreeMap<i32, Vec<usize>> = BTreeMap::new();
     for (i, &l) in labels.iter().enumerate() {
@@ -137,19 +130,23 @@ pub fn scene_result(
         (None, true) => "ok (focal filter kept all)".to_string(),
         (None, false) => "ok".to_string(),
     };
-    Ok(SceneResult {
+    let mut row = SceneResult {
+        scene: scene.name.clone(),
         n: scene.len(),
-        metrics,
         frob: frob_score(&segmentation.cluster_fundamentals(), gt_models),
         gt_motions: scene.labels.as_ref().map(|_| scene.num_motions()),
         gt_outliers: scene.labels.as_ref().map(|_| scene.num_outliers()),
         motions: segmentation.clusters.len(),
         outliers: segmentation.labels.iter().filter(|&&l| l < 0).count(),
-        hypotheses: segmentation.counts,
-        f_peak: segmentation.f_peak(),
-        f_true: scene.true_focal,
         status,
-    })
+        ..SceneResult::default()
+    };
+    if let Some(m) = &metrics {
+        row.set_metrics(m);
+    }
+    row.set_hypotheses(&segmentation.counts);
+    row.set_focal(segmentation.f_peak(), scene.true_focal);
+    Ok(row)
 }
 
 /// Runs Algorithm 1 on in-memory scenes and scores each segmentation.
@@ -363,5 +360,17 @@ mod tests {
         // The semical units of a scene shared their focal lengths: the cache
         // holds a value computed once per (scene, M).
         assert!(evaluator.focals.entries.lock().unwrap().len() <= STAGE_CACHE_ENTRIES);
+    }
+}
+
+/// The examples once in the documentation of this module's items.
+#[cfg(test)]
+mod examples {
+    #[test]
+    fn motion_indices_example() {
+        let motions = crate::evaluate::motion_indices(&[1, 0, 2, 1]);
+        assert_eq!(motions[&1], vec![0, 3]);
+        assert_eq!(motions[&2], vec![2]);
+        assert_eq!(motions.len(), 2);
     }
 }

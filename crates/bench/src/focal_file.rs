@@ -13,6 +13,85 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 use nalgebra::Matrix3;
+use thiserror::Error;
+
+/// Why a focal file cannot give the answers of a scene. Every variant names
+/// the file (and, where there is one, the line and the field).
+#[derive(Debug, Error)]
+pub enum FocalFileError {
+    /// The file cannot be opened or its header read.
+    #[error("{}: {source}", file.display())]
+    Open {
+        /// The file.
+        file: PathBuf,
+        /// The reader's error.
+        source: csv::Error,
+    },
+    /// The header lacks one of the [`REQUIRED_COLUMNS`].
+    #[error("{}: no column `{column}`", file.display())]
+    MissingColumn {
+        /// The file.
+        file: PathBuf,
+        /// The column.
+        column: &'static str,
+    },
+    /// A record cannot be read.
+    #[error("{}: line {line}: {source}", file.display())]
+    Record {
+        /// The file.
+        file: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// The reader's error.
+        source: csv::Error,
+    },
+    /// A field is not a number (or `hypothesis` not an index).
+    #[error("{}: line {line}: field `{field}`: `{text}` is not {expected}", file.display())]
+    BadField {
+        /// The file.
+        file: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// The column.
+        field: &'static str,
+        /// The cell.
+        text: String,
+        /// `a number` or `an index`.
+        expected: &'static str,
+    },
+    /// A hypothesis of a scene is listed twice.
+    #[error("{}: line {line}: scene `{scene}` hypothesis {hypothesis} is listed twice", file.display())]
+    Duplicate {
+        /// The file.
+        file: PathBuf,
+        /// 1-based line of the second row.
+        line: usize,
+        /// The scene.
+        scene: String,
+        /// The hypothesis index.
+        hypothesis: usize,
+    },
+    /// A hypothesis with a model has no row.
+    #[error("{}: no row for hypothesis {hypothesis} (write the hypotheses of this config with `sctl hypotheses`)", file.display())]
+    MissingHypothesis {
+        /// The file.
+        file: PathBuf,
+        /// The hypothesis index.
+        hypothesis: usize,
+    },
+    /// The file's F of a hypothesis is not the one this config generates.
+    #[error(
+        "{}: hypothesis {hypothesis} has another F than this config generates \
+         (the file was made for other hypotheses: seed, M, thr_px, ...?)",
+        file.display()
+    )]
+    OtherModel {
+        /// The file.
+        file: PathBuf,
+        /// The hypothesis index.
+        hypothesis: usize,
+    },
+}
 
 /// The column names of a fundamental matrix in a CSV, row-major: `F00`,
 /// `F01`, …, `F22` (entry `k` is `F[(k / 3, k % 3)]`).
@@ -30,11 +109,6 @@ pub struct ExternalFocal {
 }
 
 /// The file of a configuration: `template` with `{seed}` replaced by `seed`.
-///
-/// ```
-/// let p = bench::focal_file::focal_file_path("focals/seed{seed}.csv", 7);
-/// assert_eq!(p, std::path::PathBuf::from("focals/seed7.csv"));
-/// ```
 pub fn focal_file_path(template: &str, seed: u64) -> PathBuf {
     PathBuf::from(template.replace("{seed}", &seed.to_string()))
 }
@@ -50,78 +124,126 @@ struct Columns {
     model: Option<Vec<usize>>,
 }
 
+/// A focal file opened, its columns found.
+struct FocalFileReader {
+    reader: csv::Reader<std::fs::File>,
+    columns: Columns,
+}
+
 /// Opens the focal file at `path` and finds its columns.
-fn open(path: &Path) -> Result<(csv::Reader<std::fs::File>, Columns), String> {
-    let shown = path.display();
-    let mut reader = csv::Reader::from_path(path).map_err(|e| format!("{shown}: {e}"))?;
-    let header = reader
-        .headers()
-        .map_err(|e| format!("{shown}: header: {e}"))?;
+fn open(path: &Path) -> Result<FocalFileReader, FocalFileError> {
+    let opening = |source| FocalFileError::Open {
+        file: path.to_path_buf(),
+        source,
+    };
+    let mut reader = csv::Reader::from_path(path).map_err(opening)?;
+    let header = reader.headers().map_err(opening)?;
     let column = |name: &str| header.iter().position(|h| h == name);
     let mut required = [0; 4];
     for (slot, name) in required.iter_mut().zip(REQUIRED_COLUMNS) {
-        *slot = column(name).ok_or_else(|| format!("{shown}: no column `{name}`"))?;
+        *slot = column(name).ok_or_else(|| FocalFileError::MissingColumn {
+            file: path.to_path_buf(),
+            column: name,
+        })?;
     }
     let model = F_COLUMNS.iter().map(|name| column(name)).collect();
-    Ok((reader, Columns { required, model }))
+    Ok(FocalFileReader {
+        reader,
+        columns: Columns { required, model },
+    })
 }
 
 /// Checks, before a run, that the focal file at `path` can be read and has
 /// the [`REQUIRED_COLUMNS`].
-///
-/// # Errors
-/// A message naming the file and what is wrong.
-pub fn check_focal_file(path: &Path) -> Result<(), String> {
+pub fn check_focal_file(path: &Path) -> Result<(), FocalFileError> {
     open(path).map(|_| ())
+}
+
+/// Field `field` of `record` (in column `col`) as a number.
+fn number(
+    record: &csv::StringRecord,
+    col: usize,
+    field: &'static str,
+    path: &Path,
+    line: usize,
+) -> Result<f64, FocalFileError> {
+    let text = record.get(col).unwrap_or("").trim();
+    text.parse::<f64>().map_err(|_| FocalFileError::BadField {
+        file: path.to_path_buf(),
+        line,
+        field,
+        text: text.to_string(),
+        expected: "a number",
+    })
+}
+
+/// The answer of one record: its hypothesis index and focal lengths (and F
+/// when the file has it).
+fn answer(
+    record: &csv::StringRecord,
+    columns: &Columns,
+    path: &Path,
+    line: usize,
+) -> Result<(usize, ExternalFocal), FocalFileError> {
+    let [_, hyp_col, f1_col, f2_col] = columns.required;
+    let hyp_text = record.get(hyp_col).unwrap_or("").trim();
+    let hypothesis: usize = hyp_text.parse().map_err(|_| FocalFileError::BadField {
+        file: path.to_path_buf(),
+        line,
+        field: "hypothesis",
+        text: hyp_text.to_string(),
+        expected: "an index",
+    })?;
+    let model = match &columns.model {
+        Some(cols) => {
+            let mut m = Matrix3::zeros();
+            for (k, (&col, name)) in cols.iter().zip(F_COLUMNS).enumerate() {
+                m[(k / 3, k % 3)] = number(record, col, name, path, line)?;
+            }
+            Some(m)
+        }
+        None => None,
+    };
+    let focals = (
+        number(record, f1_col, "f1", path, line)?,
+        number(record, f2_col, "f2", path, line)?,
+    );
+    Ok((hypothesis, ExternalFocal { focals, model }))
 }
 
 /// The rows of `scene` in the focal file at `path`, by hypothesis index.
 ///
 /// # Errors
-/// A message naming the file, the row and the field: unreadable file,
-/// missing column, unparsable number, a hypothesis listed twice.
+/// A [`FocalFileError`] naming the file, the line and the field: unreadable
+/// file, missing column, unparsable number, a hypothesis listed twice.
 pub fn read_scene_focals(
     path: &Path,
     scene: &str,
-) -> Result<HashMap<usize, ExternalFocal>, String> {
-    let shown = path.display();
-    let (mut reader, columns) = open(path)?;
-    let [scene_col, hyp_col, f1_col, f2_col] = columns.required;
+) -> Result<HashMap<usize, ExternalFocal>, FocalFileError> {
+    let FocalFileReader {
+        mut reader,
+        columns,
+    } = open(path)?;
+    let scene_col = columns.required[0];
     let mut rows = HashMap::new();
     for (i, record) in reader.records().enumerate() {
         let line = i + 2;
-        let record = record.map_err(|e| format!("{shown}: line {line}: {e}"))?;
+        let record = record.map_err(|source| FocalFileError::Record {
+            file: path.to_path_buf(),
+            line,
+            source,
+        })?;
         if record.get(scene_col) != Some(scene) {
             continue;
         }
-        let field = |col: usize, name: &str| -> Result<f64, String> {
-            let text = record.get(col).unwrap_or("").trim();
-            text.parse::<f64>().map_err(|_| {
-                format!("{shown}: line {line}: field `{name}`: `{text}` is not a number")
-            })
-        };
-        let hyp_text = record.get(hyp_col).unwrap_or("").trim();
-        let hypothesis: usize = hyp_text.parse().map_err(|_| {
-            format!("{shown}: line {line}: field `hypothesis`: `{hyp_text}` is not an index")
-        })?;
-        let model = match &columns.model {
-            Some(cols) => {
-                let mut m = Matrix3::zeros();
-                for (k, (&col, name)) in cols.iter().zip(F_COLUMNS).enumerate() {
-                    m[(k / 3, k % 3)] = field(col, name)?;
-                }
-                Some(m)
-            }
-            None => None,
-        };
-        let answer = ExternalFocal {
-            focals: (field(f1_col, "f1")?, field(f2_col, "f2")?),
-            model,
-        };
+        let (hypothesis, answer) = answer(&record, &columns, path, line)?;
         if rows.insert(hypothesis, answer).is_some() {
-            return Err(format!(
-                "{shown}: line {line}: scene `{scene}` hypothesis {hypothesis} is listed twice"
-            ));
+            return Err(FocalFileError::Duplicate {
+                file: path.to_path_buf(),
+                line,
+                scene: scene.to_string(),
+                hypothesis,
+            });
         }
     }
     Ok(rows)
@@ -130,13 +252,6 @@ pub fn read_scene_focals(
 /// Whether two fundamental matrices are the same up to scale and sign: the
 /// largest entry difference of their unit-norm forms (sign aligned) is at
 /// most `tolerance`.
-///
-/// ```
-/// use nalgebra::Matrix3;
-/// let f = Matrix3::new(0.0, -1.0, 2.0, 1.0, 0.5, -3.0, -2.0, 4.0, 0.0);
-/// assert!(bench::focal_file::same_model(&f, &(-4.0 * f), 1e-12));
-/// assert!(!bench::focal_file::same_model(&f, &f.transpose(), 1e-3));
-/// ```
 pub fn same_model(a: &Matrix3<f64>, b: &Matrix3<f64>, tolerance: f64) -> bool {
     let (a, b) = (a / a.norm(), b / b.norm());
     let sign = if a.dot(&b) < 0.0 { -1.0 } else { 1.0 };
@@ -169,18 +284,20 @@ mod tests {
     #[test]
     fn errors_name_the_file_the_line_and_the_field() {
         let (_d, path) = write("scene,hypothesis,f1,f2\na,0,640,x\n");
-        let e = read_scene_focals(&path, "a").unwrap_err();
+        let e = read_scene_focals(&path, "a").unwrap_err().to_string();
         assert!(
             e.contains("focals.csv") && e.contains("line 2") && e.contains("`f2`"),
             "{e}"
         );
         let (_d, path) = write("scene,hypothesis,f1\na,0,640\n");
-        let e = read_scene_focals(&path, "a").unwrap_err();
+        let e = read_scene_focals(&path, "a").unwrap_err().to_string();
         assert!(e.contains("no column `f2`"), "{e}");
         let (_d, path) = write("scene,hypothesis,f1,f2\na,0,1,2\na,0,1,2\n");
-        let e = read_scene_focals(&path, "a").unwrap_err();
+        let e = read_scene_focals(&path, "a").unwrap_err().to_string();
         assert!(e.contains("line 3") && e.contains("twice"), "{e}");
-        let e = read_scene_focals(Path::new("no/such/file.csv"), "a").unwrap_err();
+        let e = read_scene_focals(Path::new("no/such/file.csv"), "a")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("no/such/file.csv"), "{e}");
     }
 
@@ -190,5 +307,23 @@ mod tests {
         let rows = read_scene_focals(&path, "a").unwrap();
         let m = rows[&1].model.unwrap();
         assert_eq!(m, Matrix3::new(1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0));
+    }
+}
+
+/// The examples once in the documentation of this module's items.
+#[cfg(test)]
+mod examples {
+    #[test]
+    fn focal_file_path_example() {
+        let p = crate::focal_file::focal_file_path("focals/seed{seed}.csv", 7);
+        assert_eq!(p, std::path::PathBuf::from("focals/seed7.csv"));
+    }
+
+    #[test]
+    fn same_model_example() {
+        use nalgebra::Matrix3;
+        let f = Matrix3::new(0.0, -1.0, 2.0, 1.0, 0.5, -3.0, -2.0, 4.0, 0.0);
+        assert!(crate::focal_file::same_model(&f, &(-4.0 * f), 1e-12));
+        assert!(!crate::focal_file::same_model(&f, &f.transpose(), 1e-3));
     }
 }

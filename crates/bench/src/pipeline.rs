@@ -6,6 +6,7 @@
 
 use crate::config::{FocalSolver, Method, PipelineConfig};
 use crate::focal_file;
+pub use crate::focal_file::FocalFileError;
 use datasets::Scene;
 pub use segmentation::{
     fit_cluster, ClusterModel, GeneratedHypotheses, Hypothesis, HypothesisCounts, HypothesisFocals,
@@ -27,12 +28,12 @@ pub enum PipelineError {
     },
     /// The focal file of `focal_solver = "external"` is unusable or was made
     /// for other hypotheses.
-    #[error("scene `{scene}`: focal file: {message}")]
+    #[error("scene `{scene}`: focal file: {source}")]
     FocalFile {
         /// Scene name.
         scene: String,
         /// What is wrong, naming the file, the line and the field.
-        message: String,
+        source: FocalFileError,
     },
 }
 
@@ -108,9 +109,9 @@ fn external_answers(
     hypotheses: &GeneratedHypotheses,
 ) -> Result<Vec<Option<(f64, f64)>>, PipelineError> {
     let path = focal_file::focal_file_path(&config.focal_file, config.seed);
-    let error = |message: String| PipelineError::FocalFile {
+    let error = |source: FocalFileError| PipelineError::FocalFile {
         scene: scene.name.clone(),
-        message,
+        source,
     };
     let rows = focal_file::read_scene_focals(&path, &scene.name).map_err(error)?;
     let mut answers = Vec::with_capacity(hypotheses.models.len());
@@ -120,18 +121,17 @@ fn external_answers(
             continue;
         };
         let row = rows.get(&j).ok_or_else(|| {
-            error(format!(
-                "{}: no row for hypothesis {j} (write the hypotheses of this config with `sctl hypotheses`)",
-                path.display()
-            ))
+            error(FocalFileError::MissingHypothesis {
+                file: path.clone(),
+                hypothesis: j,
+            })
         })?;
         if let Some(theirs) = &row.model {
             if !focal_file::same_model(f, theirs, 1e-6) {
-                return Err(error(format!(
-                    "{}: hypothesis {j} has another F than this config generates \
-                     (the file was made for other hypotheses: seed, M, thr_px, ...?)",
-                    path.display()
-                )));
+                return Err(error(FocalFileError::OtherModel {
+                    file: path.clone(),
+                    hypothesis: j,
+                }));
             }
         }
         answers.push(Some(row.focals));

@@ -20,14 +20,6 @@ pub const GOOD_RECALL: f64 = 0.5;
 /// `labels` (ground truth: 0 = outlier, k > 0 = motion k): its majority
 /// motion holds at least [`GOOD_PRECISION`] of the inliers and the inliers
 /// cover at least [`GOOD_RECALL`] of that motion.
-///
-/// ```
-/// use bench::quality::is_good_model;
-/// let labels = [1, 1, 1, 1, 2, 2, 0, 0];
-/// assert!(is_good_model(&[0, 1, 2], &labels));      // 3 of motion 1's 4 points
-/// assert!(!is_good_model(&[0, 4, 5, 6], &labels));  // a mix
-/// assert!(!is_good_model(&[6, 7], &labels));        // outliers only
-/// ```
 pub fn is_good_model(inliers: &[usize], labels: &[i32]) -> bool {
     let motions = labels.iter().copied().max().unwrap_or(0).max(0) as usize;
     let mut counts = vec![0usize; motions + 1];
@@ -132,5 +124,18 @@ mod tests {
             let inliers: Vec<usize> = (0..r.len()).filter(|&i| r[i] < tau).collect();
             assert!(is_good_model(&inliers, labels), "motion {motion}");
         }
+    }
+}
+
+/// The examples once in the documentation of this module's items.
+#[cfg(test)]
+mod examples {
+    #[test]
+    fn is_good_model_example() {
+        use crate::quality::is_good_model;
+        let labels = [1, 1, 1, 1, 2, 2, 0, 0];
+        assert!(is_good_model(&[0, 1, 2], &labels)); // 3 of motion 1's 4 points
+        assert!(!is_good_model(&[0, 4, 5, 6], &labels)); // a mix
+        assert!(!is_good_model(&[6, 7], &labels)); // outliers only
     }
 }

@@ -95,60 +95,9 @@ fn pipeline_with(
 impl SweepPlan {
     /// Expands the `[sweep]` lists of `config` over its `[pipeline]` table and
     /// checks `[compare] against`.
-    ///
-    /// ```
-    /// let config = bench::config::ExperimentConfig::parse(
-    ///     "name = \"x\"\n[dataset]\nkind = \"synthetic\"\n\
-    ///      [sweep]\nnum_samples = [500, 1000]\nmethod = [\"baseline\", \"semical\"]\n",
-    ///     std::path::Path::new("x.toml"),
-    /// ).unwrap();
-    /// let plan = bench::sweep::SweepPlan::expand(&config).unwrap();
-    /// assert_eq!(plan.columns, ["method", "num_samples"]);
-    /// let rows: Vec<String> = plan.combinations.iter().map(|c| c.values.join(" ")).collect();
-    /// assert_eq!(rows, ["baseline 500", "baseline 1000", "semical 500", "semical 1000"]);
-    /// ```
     pub fn expand(config: &ExperimentConfig) -> Result<SweepPlan, SweepError> {
         let base = config.pipeline_table();
-        if let Some(key) = config
-            .sweep
-            .keys()
-            .find(|k| !PIPELINE_KEYS.contains(&k.as_str()))
-        {
-            return Err(SweepError {
-                key: format!("sweep.{key}"),
-                message: format!(
-                    "unknown pipeline parameter `{key}`, expected one of {}",
-                    PIPELINE_KEYS.join(", ")
-                ),
-            });
-        }
-        let mut swept: Vec<(&'static str, &Vec<toml::Value>)> = Vec::new();
-        for key in PIPELINE_KEYS {
-            let Some(value) = config.sweep.get(key) else {
-                continue;
-            };
-            let err = |message: String| SweepError {
-                key: format!("sweep.{key}"),
-                message,
-            };
-            let toml::Value::Array(values) = value else {
-                return Err(err("must be a list of values".into()));
-            };
-            if values.is_empty() {
-                return Err(err("must list at least one value".into()));
-            }
-            for (i, v) in values.iter().enumerate() {
-                pipeline_with(&base, &[(key, v)]).map_err(|message| SweepError {
-                    key: format!("sweep.{key}[{i}]"),
-                    message,
-                })?;
-                if values[..i].contains(v) {
-                    return Err(err(format!("lists `{}` twice", format_value(v))));
-                }
-            }
-            swept.push((key, values));
-        }
-
+        let swept = swept_lists(config, &base)?;
         let method_swept = swept.first().is_some_and(|(k, _)| *k == "method");
         let mut columns: Vec<String> = Vec::new();
         if !method_swept {
@@ -156,20 +105,7 @@ impl SweepPlan {
         }
         columns.extend(swept.iter().map(|(k, _)| (*k).to_string()));
 
-        // Cartesian product, first swept key slowest.
-        let mut points: Vec<Vec<&toml::Value>> = vec![Vec::new()];
-        for (_, values) in &swept {
-            points = points
-                .into_iter()
-                .flat_map(|prefix| {
-                    values.iter().map(move |v| {
-                        let mut p = prefix.clone();
-                        p.push(v);
-                        p
-                    })
-                })
-                .collect();
-        }
+        let points = cartesian_product(&swept);
         let mut combinations = Vec::with_capacity(points.len());
         for (index, point) in points.into_iter().enumerate() {
             let overrides: Vec<(&str, &toml::Value)> = swept
@@ -232,6 +168,16 @@ impl SweepPlan {
         self.combinations
             .iter()
             .position(|c| c.pipeline == reference)
+    }
+
+    /// The `(column, value)` pairs of a combination, without the `skip` columns.
+    pub fn params_of(&self, combination: usize, skip: &[&str]) -> Vec<(&str, &str)> {
+        self.columns
+            .iter()
+            .zip(&self.combinations[combination].values)
+            .filter(|(k, _)| !skip.contains(&k.as_str()))
+            .map(|(k, v)| (k.as_str(), v.as_str()))
+            .collect()
     }
 
     /// Human-readable label of a combination: `key=value` pairs.
@@ -341,5 +287,104 @@ mod tests {
         assert_eq!(p.reference_of(0, &against), None);
         let single = plan("").unwrap();
         assert_eq!(single.reference_of(0, &against), None);
+    }
+}
+
+/// A swept key and its values.
+type Swept<'a> = (&'static str, &'a Vec<toml::Value>);
+
+/// The lists of `[sweep]` in [`PIPELINE_KEYS`] order, each checked: a known
+/// key, a non-empty list of distinct values each valid in `base`.
+fn swept_lists<'a>(
+    config: &'a ExperimentConfig,
+    base: &toml::Table,
+) -> Result<Vec<Swept<'a>>, SweepError> {
+    if let Some(key) = config
+        .sweep
+        .keys()
+        .find(|k| !PIPELINE_KEYS.contains(&k.as_str()))
+    {
+        return Err(SweepError {
+            key: format!("sweep.{key}"),
+            message: format!(
+                "unknown pipeline parameter `{key}`, expected one of {}",
+                PIPELINE_KEYS.join(", ")
+            ),
+        });
+    }
+    let mut swept: Vec<Swept<'_>> = Vec::new();
+    for key in PIPELINE_KEYS {
+        let Some(value) = config.sweep.get(key) else {
+            continue;
+        };
+        let err = |message: String| SweepError {
+            key: format!("sweep.{key}"),
+            message,
+        };
+        let toml::Value::Array(values) = value else {
+            return Err(err("must be a list of values".into()));
+        };
+        if values.is_empty() {
+            return Err(err("must list at least one value".into()));
+        }
+        for (i, v) in values.iter().enumerate() {
+            pipeline_with(base, &[(key, v)]).map_err(|message| SweepError {
+                key: format!("sweep.{key}[{i}]"),
+                message,
+            })?;
+            if values[..i].contains(v) {
+                return Err(err(format!("lists `{}` twice", format_value(v))));
+            }
+        }
+        swept.push((key, values));
+    }
+    Ok(swept)
+}
+
+/// Every combination of the swept values, the first swept key slowest.
+fn cartesian_product<'a>(swept: &[Swept<'a>]) -> Vec<Vec<&'a toml::Value>> {
+    let mut points: Vec<Vec<&toml::Value>> = vec![Vec::new()];
+    for (_, values) in swept {
+        points = points
+            .into_iter()
+            .flat_map(|prefix| {
+                values.iter().map(move |v| {
+                    let mut p = prefix.clone();
+                    p.push(v);
+                    p
+                })
+            })
+            .collect();
+    }
+    points
+}
+
+/// The examples once in the documentation of this module's items.
+#[cfg(test)]
+mod examples {
+    #[test]
+    fn expand_example() {
+        let config = crate::config::ExperimentConfig::parse(
+            "name = \"x\"\n[dataset]\nkind = \"synthetic\"\n\
+             [sweep]\nnum_samples = [500, 1000]\nmethod = [\"baseline\", \"semical\"]\n",
+            std::path::Path::new("x.toml"),
+        )
+        .unwrap();
+        let plan = crate::sweep::SweepPlan::expand(&config).unwrap();
+        assert_eq!(plan.columns, ["method", "num_samples"]);
+        let rows: Vec<String> = plan
+            .combinations
+            .iter()
+            .map(|c| c.values.join(" "))
+            .collect();
+        assert_eq!(
+            rows,
+            [
+                "baseline 500",
+                "baseline 1000",
+                "semical 500",
+                "semical 1000"
+            ]
+        );
     }
 }

@@ -1,9 +1,8 @@
 //! `sctl compare` on two hand-written `per_scene.csv` files.
 
 mod support;
-use support::sctl;
+use support::{sctl, PER_SCENE_COLUMNS as PER_SCENE_FIELDS};
 
-use bench::output::PER_SCENE_FIELDS;
 use predicates::prelude::*;
 use std::path::Path;
 

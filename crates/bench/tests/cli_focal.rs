@@ -1,38 +1,17 @@
 //! `sctl focal` end to end: the PoseLib fixture as input, and bad input.
 
+mod support;
+use support::{number as parse, one_line_error, sctl, PoseLibFocals};
+
 use std::io::Write;
-use std::path::PathBuf;
-
-use assert_cmd::Command;
-use predicates::prelude::*;
-
-fn fixture() -> PathBuf {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/fixtures/focal/poselib_focals.csv");
-    assert!(
-        path.exists(),
-        "missing fixture {}: the repository expects the shared directory beside it \
-         (../shared/fixtures/focal/poselib_focals.csv)",
-        path.display()
-    );
-    path
-}
-
-fn parse(cell: &str) -> Option<f64> {
-    if cell.is_empty() || cell == "nan" {
-        None
-    } else {
-        Some(cell.parse().unwrap())
-    }
-}
 
 #[test]
 fn focal_reads_the_poselib_fixture_and_agrees_with_it() {
-    let path = fixture();
-    let out = Command::cargo_bin("sctl")
-        .unwrap()
+    let fixture = PoseLibFocals::read();
+    let path = &fixture.path;
+    let out = sctl()
         .args(["focal", "--input"])
-        .arg(&path)
+        .arg(path)
         .output()
         .unwrap();
     assert!(
@@ -50,19 +29,16 @@ fn focal_reads_the_poselib_fixture_and_agrees_with_it() {
         .map(|l| l.split(',').map(str::to_string).collect())
         .collect();
 
-    let mut rdr = csv::Reader::from_path(&path).unwrap();
-    let headers = rdr.headers().unwrap().clone();
-    let col = |name: &str| headers.iter().position(|h| h == name).unwrap();
-    let reference: Vec<csv::StringRecord> = rdr.records().map(|r| r.unwrap()).collect();
+    let reference = &fixture.rows;
     assert_eq!(ours.len(), reference.len());
 
     let (mut feasible, mut agree) = (0, 0);
-    for (i, (row, refrow)) in ours.iter().zip(&reference).enumerate() {
+    for (i, (row, refrow)) in ours.iter().zip(reference).enumerate() {
         assert_eq!(row.len(), 7, "row {i}: {row:?}");
         assert_eq!(row[0], i.to_string());
         // Bougnoux: the same focal lengths, the same missing ones.
         for (k, name) in [(1, "bougnoux_f1"), (2, "bougnoux_f2")] {
-            match (parse(&row[k]), parse(&refrow[col(name)])) {
+            match (parse(&row[k]), fixture.value(refrow, name)) {
                 (Some(a), Some(b)) => {
                     assert!((a - b).abs() <= 1e-8 * b, "row {i} {name}: {a} vs {b}")
                 }
@@ -78,11 +54,11 @@ fn focal_reads_the_poselib_fixture_and_agrees_with_it() {
             "failed" => assert!(row[3].is_empty() && row[4].is_empty() && row[5].is_empty()),
             other => panic!("row {i}: status {other}"),
         }
-        if &refrow[col("poselib_status")] == "feasible" {
+        if fixture.text(refrow, "poselib_status") == "feasible" {
             feasible += 1;
             let want = [
-                parse(&refrow[col("iter_f1")]).unwrap(),
-                parse(&refrow[col("iter_f2")]).unwrap(),
+                fixture.value(refrow, "iter_f1").unwrap(),
+                fixture.value(refrow, "iter_f2").unwrap(),
             ];
             if let (Some(a), Some(b)) = (parse(&row[3]), parse(&row[4])) {
                 if (a.abs() - want[0].abs()).abs() <= 0.01 * want[0].abs()
@@ -112,8 +88,7 @@ fn focal_uses_the_documented_defaults() {
          0.002615938828093836,0.0046546286941375695,-0.999960174248637"
     )
     .unwrap();
-    let out = Command::cargo_bin("sctl")
-        .unwrap()
+    let out = sctl()
         .args(["focal", "--input"])
         .arg(file.path())
         .output()
@@ -133,25 +108,28 @@ fn focal_uses_the_documented_defaults() {
     assert_eq!(&row[5..], ["1", "ok"]);
 }
 
-fn run_bad(content: &str) -> (tempfile::NamedTempFile, assert_cmd::assert::Assert) {
+/// `sctl focal` on a file holding `content`: its one-line error, checked to
+/// name the file and to contain every one of `needles`.
+fn run_bad(content: &str, needles: &[&str]) -> String {
     let mut file = tempfile::NamedTempFile::new().unwrap();
     file.write_all(content.as_bytes()).unwrap();
-    let assert = Command::cargo_bin("sctl")
-        .unwrap()
+    let output = sctl()
         .args(["focal", "--input"])
         .arg(file.path())
-        .assert()
-        .failure();
-    (file, assert)
+        .output()
+        .unwrap();
+    let name = file.path().display().to_string();
+    let mut all = vec![name.as_str()];
+    all.extend_from_slice(needles);
+    one_line_error(&output, &all)
 }
 
 #[test]
 fn focal_reports_a_missing_column() {
-    let (file, assert) = run_bad("F00,F01,F02,F10,F11,F20,F21,F22\n1,2,3,4,5,6,7,8\n");
-    let name = file.path().display().to_string();
-    assert
-        .stdout(predicate::str::is_empty())
-        .stderr(predicate::str::contains(name).and(predicate::str::contains("missing column F12")));
+    run_bad(
+        "F00,F01,F02,F10,F11,F20,F21,F22\n1,2,3,4,5,6,7,8\n",
+        &["missing column F12"],
+    );
 }
 
 #[test]
@@ -159,32 +137,25 @@ fn focal_reports_a_non_numeric_cell() {
     let header = "F00,F01,F02,F10,F11,F12,F20,F21,F22,f_prior\n";
     let good = "0,-5e-7,0.002,5e-7,0,-0.001,-0.002,0.001,0,1000\n";
     let bad = "0,abc,0.002,5e-7,0,-0.001,-0.002,0.001,0,1000\n";
-    let (file, assert) = run_bad(&format!("{header}{good}{bad}"));
-    let name = file.path().display().to_string();
-    assert.stdout(predicate::str::is_empty()).stderr(
-        predicate::str::contains(name)
-            .and(predicate::str::contains("row 1 (line 3), column F01"))
-            .and(predicate::str::contains("'abc' is not a number")),
+    run_bad(
+        &format!("{header}{good}{bad}"),
+        &["row 1 (line 3), column F01", "'abc' is not a number"],
     );
 }
 
 #[test]
 fn focal_reports_nan_and_bad_parameters() {
     let header = "F00,F01,F02,F10,F11,F12,F20,F21,F22,f_prior,max_iters\n";
-    let (_, assert) = run_bad(&format!(
-        "{header}0,-5e-7,0.002,5e-7,NaN,-0.001,-0.002,0.001,0,1000,50\n"
-    ));
-    assert.stderr(predicate::str::contains(
-        "row 0 (line 2), column F11: 'NaN' is not a finite number",
-    ));
-    let (_, assert) = run_bad(&format!(
-        "{header}0,-5e-7,0.002,5e-7,0,-0.001,-0.002,0.001,0,-3,50\n"
-    ));
-    assert.stderr(predicate::str::contains("column f_prior: -3 must be > 0"));
-    let (_, assert) = run_bad(&format!(
-        "{header}0,-5e-7,0.002,5e-7,0,-0.001,-0.002,0.001,0,1000,2.5\n"
-    ));
-    assert.stderr(predicate::str::contains(
-        "column max_iters: '2.5' is not a non-negative integer",
-    ));
+    run_bad(
+        &format!("{header}0,-5e-7,0.002,5e-7,NaN,-0.001,-0.002,0.001,0,1000,50\n"),
+        &["row 0 (line 2), column F11: 'NaN' is not a finite number"],
+    );
+    run_bad(
+        &format!("{header}0,-5e-7,0.002,5e-7,0,-0.001,-0.002,0.001,0,-3,50\n"),
+        &["column f_prior: -3 must be > 0"],
+    );
+    run_bad(
+        &format!("{header}0,-5e-7,0.002,5e-7,0,-0.001,-0.002,0.001,0,1000,2.5\n"),
+        &["column max_iters: '2.5' is not a non-negative integer"],
+    );
 }

@@ -3,10 +3,9 @@
 //! drives `sctl run`.
 
 mod support;
-use support::{quickstart, sctl};
+use support::{quickstart, same_up_to_scale as same_model, sctl};
 
 use bench::config::ExperimentConfig;
-use bench::focal_file::same_model;
 use bench::pipeline::generate_hypotheses;
 use nalgebra::Matrix3;
 use std::path::Path;

@@ -55,11 +55,9 @@ fn prints_every_metric_as_one_json_object() {
         (v["me_all"].as_f64().unwrap() - 2.0 / 8.0).abs() < 1e-12,
         "{v}"
     );
-    let lib = bench::metrics::ClusteringMetrics::compute(
-        &[7, 7, 7, 3, 3, -1, -1, 3],
-        &[1, 1, 1, 2, 2, 2, 0, 0],
-    )
-    .unwrap();
+    let lib =
+        metrics::ClusteringMetrics::compute(&[7, 7, 7, 3, 3, -1, -1, 3], &[1, 1, 1, 2, 2, 2, 0, 0])
+            .unwrap();
     assert_eq!(v["ari"].as_f64().unwrap(), lib.ari);
     assert_eq!(v["nmi"].as_f64().unwrap(), lib.nmi);
     assert_eq!(v["fnr"].as_f64().unwrap(), lib.fnr);

@@ -3,7 +3,7 @@
 //! one-line errors naming the file and key for bad configs.
 
 mod support;
-use support::sctl;
+use support::{decode_png, one_line_error as assert_one_line_error, sctl};
 
 use predicates::prelude::*;
 use std::path::{Path, PathBuf};
@@ -225,13 +225,11 @@ fn one_line_error(config_text: &str, expected: &str) {
         .arg(dir.path().join("out"))
         .output()
         .unwrap();
-    assert!(!output.status.success());
-    let stderr = String::from_utf8(output.stderr).unwrap();
-    assert_eq!(stderr.lines().count(), 1, "{stderr}");
-    let expected = format!("error: {}{expected}", path.display());
+    let message = assert_one_line_error(&output, &[]);
+    let expected = format!("{}{expected}", path.display());
     assert!(
-        stderr.starts_with(&expected),
-        "{stderr} does not start with {expected}"
+        message.starts_with(&expected),
+        "{message} does not start with {expected}"
     );
 }
 
@@ -304,26 +302,6 @@ num_samples = [100, 200]
 per_scene = true
 formats = ["png", "svg"]
 "#;
-
-/// Decodes a PNG file, checking that it is one and is not a flat colour.
-fn decode_png(path: &Path) -> image::RgbImage {
-    let bytes = std::fs::read(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    assert!(
-        bytes.starts_with(b"\x89PNG\r\n\x1a\n"),
-        "{} is not a PNG",
-        path.display()
-    );
-    let image = image::load_from_memory_with_format(&bytes, image::ImageFormat::Png)
-        .unwrap()
-        .to_rgb8();
-    let first = image.get_pixel(0, 0);
-    assert!(
-        image.pixels().any(|p| p != first),
-        "{} is one flat colour",
-        path.display()
-    );
-    image
-}
 
 /// The files under `dir`, relative to it, sorted.
 fn files_under(dir: &Path) -> Vec<String> {

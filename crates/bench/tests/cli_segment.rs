@@ -3,8 +3,8 @@
 mod support;
 use support::sctl;
 
-use bench::metrics::ClusteringMetrics;
 use datasets::synthetic::Preset;
+use metrics::ClusteringMetrics;
 use predicates::prelude::*;
 use std::fmt::Write as _;
 use std::path::Path;

@@ -1,8 +1,8 @@
 //! `sctl compare RESULTS_A RESULTS_B`: paired comparison of two runs on
 //! their common scenes.
 
+use crate::compare::{compare, load_side, parse_filter, render, Filter};
 use anyhow::Result;
-use bench::compare::{compare, load_side, parse_filter, render};
 use std::path::PathBuf;
 
 /// Options of `sctl compare`.
@@ -17,10 +17,10 @@ pub struct Args {
     pub metric: String,
     /// Select A's combination by a parameter value (repeatable), e.g. --a method=semical.
     #[arg(long = "a", value_name = "KEY=VALUE", value_parser = parse_filter)]
-    pub select_a: Vec<(String, String)>,
+    pub select_a: Vec<Filter>,
     /// Select B's combination by a parameter value (repeatable), e.g. --b method=baseline.
     #[arg(long = "b", value_name = "KEY=VALUE", value_parser = parse_filter)]
-    pub select_b: Vec<(String, String)>,
+    pub select_b: Vec<Filter>,
 }
 
 /// Prints the comparison.

@@ -1,11 +1,12 @@
 //! `sctl filter-quality CONFIG.toml`: per scene, how many good models
-//! (`bench::quality::is_good_model`) the focal filter of semical kept and
+//! (`crate::quality::is_good_model`) the focal filter of semical kept and
 //! discarded, with the config's `[pipeline]` (method forced to semical),
 //! as a CSV on stdout.
 
+use super::LoadedConfig;
+use crate::experiment::thread_pool;
+use crate::quality::filter_quality;
 use anyhow::{Context, Result};
-use bench::experiment::thread_pool;
-use bench::quality::filter_quality;
 use std::io::Write;
 
 /// Options of `sctl filter-quality`.
@@ -21,7 +22,7 @@ pub const HEADER: &str = "scene,refined,good_refined,kept,good_kept,discarded,go
 
 /// Prints one row per scene with ground truth.
 pub fn run(args: Args) -> Result<()> {
-    let (config, scenes) = args.input.load()?;
+    let LoadedConfig { config, scenes } = args.input.load()?;
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     let pool = thread_pool(threads)?;
     let mut out = std::io::stdout().lock();

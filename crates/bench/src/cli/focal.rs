@@ -5,8 +5,8 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+use crate::focal_file::F_COLUMNS;
 use anyhow::{bail, Context};
-use bench::focal_file::F_COLUMNS;
 use focal::{bougnoux_per_image, robust_focals, FocalWeights, RobustFocalParams};
 use nalgebra::Matrix3;
 

@@ -5,9 +5,10 @@
 //! (centred coordinates), solved by the config's robust solver (its weight
 //! sets and `max_iters`, failures reported) and by Bougnoux's formula.
 
+use super::LoadedConfig;
+use crate::evaluate::motion_indices;
+use crate::pipeline::fit_cluster;
 use anyhow::{Context, Result};
-use bench::evaluate::motion_indices;
-use bench::pipeline::fit_cluster;
 use focal::OnFailure;
 use geometry::Correspondences;
 use std::io::Write;
@@ -29,7 +30,7 @@ fn cell(v: Option<f64>) -> String {
 
 /// Prints one row per (scene, ground-truth motion).
 pub fn run(args: Args) -> Result<()> {
-    let (config, scenes) = args.input.load()?;
+    let LoadedConfig { config, scenes } = args.input.load()?;
     let pipeline = &config.pipeline;
     let weight_sets = pipeline.weight_sets.sets();
     let mut out = std::io::stdout().lock();

@@ -5,9 +5,10 @@
 //! focal solver whose answers `focal_solver = "external"` reads back
 //! (`scripts/poselib_focals.py` runs PoseLib on it).
 
+use super::LoadedConfig;
+use crate::focal_file::{focal_file_path, F_COLUMNS};
+use crate::pipeline::generate_hypotheses;
 use anyhow::{Context, Result};
-use bench::focal_file::{focal_file_path, F_COLUMNS};
-use bench::pipeline::generate_hypotheses;
 use std::io::Write;
 
 /// Options of `sctl hypotheses`.
@@ -26,7 +27,7 @@ pub struct Args {
 
 /// Writes every refined hypothesis of every scene.
 pub fn run(args: Args) -> Result<()> {
-    let (mut config, scenes) = args.input.load()?;
+    let LoadedConfig { mut config, scenes } = args.input.load()?;
     if let Some(seed) = args.seed {
         config.pipeline.seed = seed;
     }

@@ -5,7 +5,9 @@
 use anyhow::{bail, Context};
 use datasets::adelaidermf::{self, AdelaideRmf};
 use datasets::hopef::{self, HopeF, Selection, Split};
-use datasets::{data_root_env, resolve_data_root, workspace_datasets_dir, DataRootSources, Scene};
+use datasets::{
+    data_root_env, resolve_data_root, workspace_datasets_dir, DataRoot, DataRootSources, Scene,
+};
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -76,6 +78,58 @@ impl SceneSummary {
     }
 }
 
+/// One scene, loaded when called.
+type Loader = Box<dyn Fn() -> Result<Scene, datasets::DatasetError>>;
+
+/// The loaders of the AdelaideRMF scenes asked for.
+fn adelaidermf_loaders(args: &Args, root: &DataRoot) -> anyhow::Result<Vec<Loader>> {
+    if args.split.is_some() {
+        bail!("--split applies to HOPE-F only");
+    }
+    let dir = args.dir.clone().unwrap_or_else(|| root.adelaidermf_dir());
+    let data = AdelaideRmf::open(&dir)?;
+    let names: Vec<String> = match &args.scene {
+        Some(name) => {
+            data.scene_path(name)?;
+            vec![name.clone()]
+        }
+        None => data.scene_names().iter().map(|s| s.to_string()).collect(),
+    };
+    Ok(names
+        .into_iter()
+        .map(|name| {
+            let data = data.clone();
+            Box::new(move || data.load_with(&name, adelaidermf::LoadOptions::default())) as Loader
+        })
+        .collect())
+}
+
+/// The loaders of the HOPE-F scenes asked for.
+fn hopef_loaders(args: &Args, root: &DataRoot) -> anyhow::Result<Vec<Loader>> {
+    let dir = args.dir.clone().unwrap_or_else(|| root.hopef_dir());
+    let data = HopeF::open(&dir)?;
+    let refs = match &args.scene {
+        Some(name) => vec![data.find(name)?],
+        None => {
+            let selection = args.split.map_or(Selection::All, Selection::Split);
+            data.select(&[], &selection)?
+        }
+    };
+    if refs.is_empty() {
+        bail!(
+            "no HOPE-F scene folders (<k>/<NNNN>) under {}",
+            dir.display()
+        );
+    }
+    Ok(refs
+        .into_iter()
+        .map(|r| {
+            let data = data.clone();
+            Box::new(move || data.load(&r, hopef::LoadOptions::default())) as Loader
+        })
+        .collect())
+}
+
 /// Runs `sctl inspect`.
 pub fn run(args: Args) -> anyhow::Result<()> {
     let root = resolve_data_root(
@@ -86,54 +140,9 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         },
         &workspace_datasets_dir(),
     );
-    // Each entry loads one scene when called.
-    type Loader = Box<dyn Fn() -> Result<Scene, datasets::DatasetError>>;
-    let loaders: Vec<Loader> = match args.dataset {
-        DatasetKind::Adelaidermf => {
-            if args.split.is_some() {
-                bail!("--split applies to HOPE-F only");
-            }
-            let dir = args.dir.clone().unwrap_or_else(|| root.adelaidermf_dir());
-            let data = AdelaideRmf::open(&dir)?;
-            let names: Vec<String> = match &args.scene {
-                Some(name) => {
-                    data.scene_path(name)?;
-                    vec![name.clone()]
-                }
-                None => data.scene_names().iter().map(|s| s.to_string()).collect(),
-            };
-            names
-                .into_iter()
-                .map(|name| {
-                    let data = data.clone();
-                    Box::new(move || data.load_with(&name, adelaidermf::LoadOptions::default()))
-                        as Loader
-                })
-                .collect()
-        }
-        DatasetKind::Hopef => {
-            let dir = args.dir.clone().unwrap_or_else(|| root.hopef_dir());
-            let data = HopeF::open(&dir)?;
-            let refs = match &args.scene {
-                Some(name) => vec![data.find(name)?],
-                None => {
-                    let selection = args.split.map_or(Selection::All, Selection::Split);
-                    data.select(&[], &selection)?
-                }
-            };
-            if refs.is_empty() {
-                bail!(
-                    "no HOPE-F scene folders (<k>/<NNNN>) under {}",
-                    dir.display()
-                );
-            }
-            refs.into_iter()
-                .map(|r| {
-                    let data = data.clone();
-                    Box::new(move || data.load(&r, hopef::LoadOptions::default())) as Loader
-                })
-                .collect()
-        }
+    let loaders = match args.dataset {
+        DatasetKind::Adelaidermf => adelaidermf_loaders(&args, &root)?,
+        DatasetKind::Hopef => hopef_loaders(&args, &root)?,
     };
 
     let stdout = std::io::stdout();

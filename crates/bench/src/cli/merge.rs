@@ -17,7 +17,8 @@ pub struct Args {
 
 /// Merges and prints the summary table.
 pub fn run(args: Args) -> Result<()> {
-    let (out, summary) = bench::experiment::merge(&args.dirs, args.out.as_deref())?;
+    let crate::experiment::Merged { out, summary } =
+        crate::experiment::merge(&args.dirs, args.out.as_deref())?;
     print!("{summary}");
     println!(
         "merged {} directories into {}",

@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context};
-use bench::metrics::{ClusteringMetrics, MetricsError};
+use metrics::{ClusteringMetrics, MetricsError};
 
 /// Options.
 #[derive(clap::Args)]

@@ -1,11 +1,11 @@
 //! `sctl run CONFIG.toml`: runs an experiment (every scene × every sweep
 //! combination) into a run directory.
 
+use crate::config::{ExperimentConfig, CONFIG_KEYS_HELP};
+use crate::dataset::load_scenes;
+use crate::evaluate::PipelineEvaluator;
+use crate::experiment::{default_out_dir, run_experiment, thread_pool, RunOptions, Shard};
 use anyhow::{Context, Result};
-use bench::config::{ExperimentConfig, CONFIG_KEYS_HELP};
-use bench::dataset::load_scenes;
-use bench::evaluate::PipelineEvaluator;
-use bench::experiment::{default_out_dir, run_experiment, thread_pool, RunOptions, Shard};
 use std::io::IsTerminal;
 use std::path::PathBuf;
 
@@ -79,7 +79,7 @@ pub fn run(args: Args) -> Result<()> {
     if config.plots.enabled && args.shard.is_none() {
         println!(
             "figures in {}",
-            out_dir.join(bench::output::PLOTS_DIR).display()
+            out_dir.join(crate::output::PLOTS_DIR).display()
         );
     }
     if let Some(shard) = args.shard {

@@ -4,12 +4,14 @@
 //! with the config's seed as it is (not mixed with the file name), so the
 //! labels are those of the library and the Python package on the same input.
 
+use crate::config::PipelineConfig;
+use crate::dataset::load_match_file;
+use crate::evaluate::{ground_truth_models, scene_result};
+use crate::output::SceneResult;
+use crate::pipeline::{matches, Segmentation};
+use crate::plots::{clusters_over_images, PlotFormat};
 use anyhow::{bail, Context, Result};
-use bench::config::PipelineConfig;
-use bench::dataset::load_match_file;
-use bench::evaluate::{ground_truth_models, scene_result};
-use bench::pipeline::matches;
-use bench::plots::{clusters_over_images, PlotFormat};
+use datasets::Scene;
 use image::{ImageFormat, ImageReader, RgbImage};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -102,7 +104,7 @@ pub fn run(args: Args) -> Result<()> {
         _ => None,
     };
     let threads = args.threads.map_or(0, usize::from);
-    let segmentation = bench::experiment::thread_pool(threads)?
+    let segmentation = crate::experiment::thread_pool(threads)?
         .install(|| segmentation::segment(&matches(&scene), &config.params()))
         .with_context(|| args.matches.display().to_string())?;
     let result = scene_result(&scene, &segmentation, &ground_truth_models(&scene))?;
@@ -111,43 +113,7 @@ pub fn run(args: Args) -> Result<()> {
         let _ = writeln!(s, "{l}");
         s
     });
-    let mut summary = format!(
-        "{}: {} matches, {} motion(s) found, {} outliers; hypotheses kept {} of {} generated ({} refined)",
-        scene.name,
-        scene.len(),
-        result.motions,
-        result.outliers,
-        result.hypotheses.kept,
-        result.hypotheses.generated,
-        result.hypotheses.refined,
-    );
-    for c in &segmentation.clusters {
-        let _ = write!(summary, "\n  motion {}: {} matches", c.label, c.size);
-    }
-    match result.f_peak {
-        Some(f) => {
-            let _ = write!(
-                summary,
-                "\n  f_peak {f:.1} px (focal prior {:.0} px)",
-                scene.focal_prior()
-            );
-        }
-        None => summary.push_str("\n  f_peak: none (baseline)"),
-    }
-    if let Some(m) = &result.metrics {
-        let _ = write!(
-            summary,
-            "\n  against the file's labels: ME {:.2} %, FNR {:.2} %, PUR {:.2} %, ARI {:.4}, NMI {:.4}",
-            100.0 * m.me,
-            100.0 * m.fnr,
-            100.0 * m.pur,
-            m.ari,
-            m.nmi
-        );
-    }
-    if result.status != "ok" {
-        let _ = write!(summary, "\n  note: {}", result.status);
-    }
+    let mut summary = summary_text(&scene, &segmentation, &result);
     if let Some(plot) = &args.plot {
         let title = format!(
             "{}: {} motion(s), {} outliers",
@@ -176,4 +142,49 @@ pub fn run(args: Args) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The summary printed after a segmentation: what was found, f_peak, the
+/// metrics against the file's labels and any note.
+fn summary_text(scene: &Scene, segmentation: &Segmentation, result: &SceneResult) -> String {
+    let mut summary = format!(
+        "{}: {} matches, {} motion(s) found, {} outliers; hypotheses kept {} of {} generated ({} refined)",
+        scene.name,
+        scene.len(),
+        result.motions,
+        result.outliers,
+        result.hypotheses_kept,
+        result.hypotheses_generated,
+        result.hypotheses_refined,
+    );
+    for c in &segmentation.clusters {
+        let _ = write!(summary, "\n  motion {}: {} matches", c.label, c.size);
+    }
+    match result.f_peak {
+        Some(f) => {
+            let _ = write!(
+                summary,
+                "\n  f_peak {f:.1} px (focal prior {:.0} px)",
+                scene.focal_prior()
+            );
+        }
+        None => summary.push_str("\n  f_peak: none (baseline)"),
+    }
+    if let (Some(me), Some(fnr), Some(pur), Some(ari), Some(nmi)) =
+        (result.me, result.fnr, result.pur, result.ari, result.nmi)
+    {
+        let _ = write!(
+            summary,
+            "\n  against the file's labels: ME {:.2} %, FNR {:.2} %, PUR {:.2} %, ARI {:.4}, NMI {:.4}",
+            100.0 * me,
+            100.0 * fnr,
+            100.0 * pur,
+            ari,
+            nmi
+        );
+    }
+    if result.status != "ok" {
+        let _ = write!(summary, "\n  note: {}", result.status);
+    }
+    summary
 }

@@ -4,8 +4,8 @@
 
 use std::path::PathBuf;
 
+use crate::wilcoxon::{wilcoxon, Alternative, Mode};
 use anyhow::bail;
-use bench::wilcoxon::{wilcoxon, Alternative, Mode};
 
 use super::metrics::read_tokens;
 

@@ -17,19 +17,6 @@
 //! `{1..n}` by sum, in probabilities (each step halves), and its tails are
 //! summed in the same order as numpy's pairwise summation so that the
 //! p-values agree with scipy's bit for bit, rounding included.
-//!
-//! ```
-//! use bench::wilcoxon::{wilcoxon, Alternative, Mode, ModeUsed};
-//!
-//! // Per-scene errors of a baseline and of a method (H1: baseline > method).
-//! let baseline = [0.30, 0.12, 0.25, 0.40, 0.18, 0.22, 0.35, 0.09];
-//! let method = [0.20, 0.10, 0.28, 0.15, 0.12, 0.21, 0.30, 0.02];
-//! let r = wilcoxon(&baseline, &method, Alternative::Greater, Mode::Auto).unwrap();
-//! assert_eq!(r.mode_used, ModeUsed::Exact);
-//! assert_eq!(r.n, 8);
-//! assert_eq!(r.statistic, 33.0); // every rank but that of -0.03 (rank 3)
-//! assert_eq!(r.p_value, 5.0 / 256.0); // T+ >= 33 in 5 of the 2^8 sign patterns
-//! ```
 
 use serde::{Deserialize, Serialize};
 use statrs::distribution::{ContinuousCDF, Normal};
@@ -168,21 +155,6 @@ pub enum WilcoxonError {
 /// [`WilcoxonError`] for samples of different length, a NaN or infinite
 /// value, no pairs, no non-zero difference, or [`Mode::Exact`] with more
 /// than [`EXACT_MAX_N`] non-zero differences.
-///
-/// ```
-/// use bench::wilcoxon::{wilcoxon, Alternative, Mode, ModeUsed};
-///
-/// let x = [1.0, 2.0, 3.0, 4.0, 5.0];
-/// let y = [0.0, 0.0, 0.0, 0.0, 0.0];
-/// let r = wilcoxon(&x, &y, Alternative::Greater, Mode::Exact).unwrap();
-/// assert_eq!((r.statistic, r.p_value), (15.0, 1.0 / 32.0));
-///
-/// let approx = wilcoxon(&x, &y, Alternative::Greater, Mode::Approx).unwrap();
-/// assert_eq!(approx.mode_used, ModeUsed::Approx);
-/// assert!((approx.p_value - 0.021557223391537678).abs() < 1e-12);
-///
-/// assert!(wilcoxon(&x, &y[..4], Alternative::Greater, Mode::Auto).is_err());
-/// ```
 pub fn wilcoxon(
     x: &[f64],
     y: &[f64],
@@ -325,13 +297,6 @@ impl SignedRanks {
 /// `k = 0..=n(n+1)/2`, i.e. (number of subsets of `{1..n}` summing to `k`)
 /// / 2^n, built one rank at a time: `pmf_m[k] = (pmf_{m−1}[k] +
 /// pmf_{m−1}[k − m]) / 2`.
-///
-/// ```
-/// use bench::wilcoxon::signed_rank_null_pmf;
-///
-/// // Subsets of {1, 2, 3}: sums 0, 1, 2, 3, 3, 4, 5, 6.
-/// assert_eq!(signed_rank_null_pmf(3), vec![1.0, 1.0, 1.0, 2.0, 1.0, 1.0, 1.0].iter().map(|c| c / 8.0).collect::<Vec<_>>());
-/// ```
 pub fn signed_rank_null_pmf(n: usize) -> Vec<f64> {
     let mut pmf = vec![0.0; n * (n + 1) / 2 + 1];
     pmf[0] = 1.0;
@@ -530,6 +495,60 @@ mod tests {
         assert_eq!(
             permutation_p_value(&ranked, Alternative::Less),
             le as f64 / total
+        );
+    }
+}
+
+#[cfg(test)]
+mod scipy_fixtures;
+#[cfg(test)]
+#[path = "../../tests/support/fixtures.rs"]
+mod test_fixtures;
+
+/// The examples once in the documentation of this module's items.
+#[cfg(test)]
+mod examples {
+    #[test]
+    fn module_example() {
+        use crate::wilcoxon::{wilcoxon, Alternative, Mode, ModeUsed};
+
+        // Per-scene errors of a baseline and of a method (H1: baseline > method).
+        let baseline = [0.30, 0.12, 0.25, 0.40, 0.18, 0.22, 0.35, 0.09];
+        let method = [0.20, 0.10, 0.28, 0.15, 0.12, 0.21, 0.30, 0.02];
+        let r = wilcoxon(&baseline, &method, Alternative::Greater, Mode::Auto).unwrap();
+        assert_eq!(r.mode_used, ModeUsed::Exact);
+        assert_eq!(r.n, 8);
+        assert_eq!(r.statistic, 33.0); // every rank but that of -0.03 (rank 3)
+        assert_eq!(r.p_value, 5.0 / 256.0); // T+ >= 33 in 5 of the 2^8 sign patterns
+    }
+
+    #[test]
+    fn wilcoxon_example() {
+        use crate::wilcoxon::{wilcoxon, Alternative, Mode, ModeUsed};
+
+        let x = [1.0, 2.0, 3.0, 4.0, 5.0];
+        let y = [0.0, 0.0, 0.0, 0.0, 0.0];
+        let r = wilcoxon(&x, &y, Alternative::Greater, Mode::Exact).unwrap();
+        assert_eq!((r.statistic, r.p_value), (15.0, 1.0 / 32.0));
+
+        let approx = wilcoxon(&x, &y, Alternative::Greater, Mode::Approx).unwrap();
+        assert_eq!(approx.mode_used, ModeUsed::Approx);
+        assert!((approx.p_value - 0.021557223391537678).abs() < 1e-12);
+
+        assert!(wilcoxon(&x, &y[..4], Alternative::Greater, Mode::Auto).is_err());
+    }
+
+    #[test]
+    fn signed_rank_null_pmf_example() {
+        use crate::wilcoxon::signed_rank_null_pmf;
+
+        // Subsets of {1, 2, 3}: sums 0, 1, 2, 3, 3, 4, 5, 6.
+        assert_eq!(
+            signed_rank_null_pmf(3),
+            [1.0, 1.0, 1.0, 2.0, 1.0, 1.0, 1.0]
+                .iter()
+                .map(|c| c / 8.0)
+                .collect::<Vec<_>>()
         );
     }
 }

@@ -3,11 +3,12 @@
 //! not depend on the thread count, on interruption + `--resume`, or on
 //! sharding + merge.
 
+use super::{merge, run_experiment, Evaluator, Merged, RunOptions, ScenePlots, Shard};
+use crate::config::{ExperimentConfig, Method, PipelineConfig};
+use crate::output::{SceneResult, StageTimings};
 use anyhow::{bail, Result};
-use bench::config::{ExperimentConfig, Method, PipelineConfig};
-use bench::experiment::{merge, run_experiment, Evaluator, RunOptions, ScenePlots, Shard};
-use bench::metrics::ClusteringMetrics;
-use bench::output::{HypothesisCounts, SceneResult, StageTimings};
+use metrics::ClusteringMetrics;
+use segmentation::HypothesisCounts;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Duration;
@@ -59,34 +60,34 @@ impl Evaluator for Stand {
         } else {
             base
         } + 1.0 / 3.0 / 100.0;
-        let result = SceneResult {
+        let mut result = SceneResult {
             n: 100 + scene,
-            metrics: Some(ClusteringMetrics {
-                me,
-                me_all: me * 1.5,
-                acc: 1.0 - me,
-                fnr: me / 2.0,
-                pur: 1.0 - me / 3.0,
-                ari: 0.5,
-                nmi: 0.6,
-            }),
             frob: (scene % 3 != 0).then_some(0.01 * scene as f64),
             gt_motions: Some(2),
             gt_outliers: Some(10),
             motions: 2,
             outliers: 12,
-            hypotheses: HypothesisCounts {
-                generated: p.num_samples,
-                refined: p.num_samples - 1,
-                local_ok: p.num_samples / 2,
-                kept: p.num_samples / 3,
-                focal_failures: 1,
-                focal_priors: 0,
-            },
-            f_peak: Some(1000.0 + scene as f64),
-            f_true: None,
             status: "ok".into(),
+            ..SceneResult::default()
         };
+        result.set_metrics(&ClusteringMetrics {
+            me,
+            me_all: me * 1.5,
+            acc: 1.0 - me,
+            fnr: me / 2.0,
+            pur: 1.0 - me / 3.0,
+            ari: 0.5,
+            nmi: 0.6,
+        });
+        result.set_hypotheses(&HypothesisCounts {
+            generated: p.num_samples,
+            refined: p.num_samples - 1,
+            local_ok: p.num_samples / 2,
+            kept: p.num_samples / 3,
+            focal_failures: 1,
+            focal_priors: 0,
+        });
+        result.set_focal(Some(1000.0 + scene as f64), None);
         let timings = StageTimings {
             total: call as f64, // differs between runs: kept out of every compared file
             ..Default::default()
@@ -274,11 +275,22 @@ fn shards_merge_into_one_run() {
     let out = root.path().join("merged");
     let err = merge(&shards[..2], Some(&out)).unwrap_err().to_string();
     assert!(err.contains("units are missing"), "{err}");
-    let (dir, summary) = merge(&shards, Some(&out)).unwrap();
+    let Merged { out: dir, summary } = merge(&shards, Some(&out)).unwrap();
     assert_eq!(dir, out);
     assert!(
         summary.contains("method=semical num_samples=200"),
         "{summary}"
     );
     assert_same_files(&one, &out);
+}
+
+#[test]
+fn shard_parsing_and_membership() {
+    let s: Shard = "2/3".parse().unwrap();
+    assert_eq!(s, Shard { index: 2, count: 3 });
+    let units: Vec<usize> = (0..9).filter(|&u| s.contains(u)).collect();
+    assert_eq!(units, [1, 4, 7]);
+    for bad in ["0/3", "4/3", "3", "a/b", "1/0"] {
+        assert!(bad.parse::<Shard>().is_err(), "{bad}");
+    }
 }

@@ -1,48 +1,40 @@
-//! The figures of `bench::plots`: every function writes a decodable PNG of
+//! The figures of `plots`: every function writes a decodable PNG of
 //! the expected size that is not one flat colour and whose title was
 //! rendered, and an SVG with the expected text; empty input draws a "no
 //! data" figure; bad input is an error naming the file; the cluster figure
 //! puts each point at its pixel in its cluster's colour.
 
-use bench::plots::{
-    cluster_colour, clusters_over_images, focal_error_histogram, focal_kde,
-    ground_truth_plot_labels, me_scatter, me_vs_samples, ClustersLayout, FocalKdePlot, PlotError,
-    ScenePair, Series, CHART_SIZE, OUTLIER_COLOUR, PEAK_COLOUR, TRUE_FOCAL_COLOUR,
+use super::clusters::ClustersLayout;
+use super::me_scatter::ScenePair;
+use super::me_vs_samples::Series;
+use super::test_png::decode_chart as decode_png;
+use super::{
+    cluster_colour, clusters_over_images, focal_error_histogram, focal_kde, me_scatter,
+    me_vs_samples, FocalKdePlot, PlotError, CHART_SIZE, OUTLIER_COLOUR, PEAK_COLOUR,
+    TRUE_FOCAL_COLOUR,
 };
 use image::{Rgb, RgbImage};
 use plotters::style::RGBColor;
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 
-fn rgb(c: RGBColor) -> Rgb<u8> {
-    Rgb([c.0, c.1, c.2])
+/// Ground-truth labels (0 = outlier, 1..k = motion) as plot labels (−1 =
+/// outlier, 0..k−1 = cluster), so that [`clusters_over_images`] can draw the
+/// ground truth: `j ↦ j − 1` for `j > 0`, anything else `↦ −1`.
+fn ground_truth_plot_labels(ground_truth: &[i32]) -> Vec<i32> {
+    ground_truth
+        .iter()
+        .map(|&j| if j > 0 { j - 1 } else { -1 })
+        .collect()
 }
 
-/// Decodes the PNG and checks its size, that it has several colours and
-/// that the top strip (the title) holds dark text pixels.
-fn decode_png(path: &Path, size: (u32, u32)) -> RgbImage {
-    let bytes = std::fs::read(path).unwrap();
-    assert!(
-        bytes.starts_with(b"\x89PNG\r\n\x1a\n"),
-        "{} is not a PNG",
-        path.display()
-    );
-    let image = image::load_from_memory_with_format(&bytes, image::ImageFormat::Png)
-        .unwrap()
-        .to_rgb8();
-    assert_eq!(image.dimensions(), size, "{}", path.display());
-    let colours: HashSet<[u8; 3]> = image.pixels().map(|p| p.0).collect();
-    assert!(colours.len() > 2, "{} is flat: {colours:?}", path.display());
-    let dark_title_pixels = (0..50)
-        .flat_map(|y| (0..image.width()).map(move |x| (x, y)))
-        .filter(|&(x, y)| image.get_pixel(x, y).0.iter().all(|&c| c < 90))
-        .count();
-    assert!(
-        dark_title_pixels > 50,
-        "{}: no title text rendered",
-        path.display()
-    );
-    image
+#[test]
+fn ground_truth_plot_labels_example() {
+    assert_eq!(ground_truth_plot_labels(&[0, 1, 2, 1]), vec![-1, 0, 1, 0]);
+}
+
+fn rgb(c: RGBColor) -> Rgb<u8> {
+    Rgb([c.0, c.1, c.2])
 }
 
 fn count_colour(image: &RgbImage, colour: RGBColor) -> usize {

@@ -1,0 +1,220 @@
+//! The `[pipeline]` table: the parameters of Algorithm 1 ([`PipelineConfig`],
+//! mirroring [`segmentation::Params`]) and the files that give only them.
+
+use super::{parse_toml, ConfigError};
+use segmentation::{
+    EightPoint, FocalSolver, IrlsFit, Linkage, LocalTest, Method, MinimalSolutions, MinimalSolver,
+    OnFailure, ParamError, Params, WeightSets,
+};
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// The `[pipeline]` table of an experiment file: every parameter of
+/// [`segmentation::Params`] under the same name, with the same default (see
+/// the field docs there), and `focal_file`, the harness's source of the
+/// answers of `focal_solver = "external"`.
+///
+/// ```
+/// let p: bench::config::PipelineConfig = toml::from_str("num_samples = 500").unwrap();
+/// assert_eq!(p.num_samples, 500);
+/// assert_eq!(p.thr_px, 2.5); // Table 1
+/// assert!(toml::from_str::<bench::config::PipelineConfig>("num_sample = 5").is_err());
+/// ```
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+#[allow(missing_docs)] // each field is documented on segmentation::Params
+pub struct PipelineConfig {
+    pub method: Method,
+    pub num_samples: usize,
+    pub mss_size: usize,
+    pub thr_px: f64,
+    pub tau_diff: f64,
+    pub tau_range: f64,
+    pub irls_iters: usize,
+    pub irls_fit: IrlsFit,
+    pub irls_unit_weight_fallback: bool,
+    pub irls_sigma_offset_px: f64,
+    pub irls_polish: bool,
+    pub refine: bool,
+    pub eight_point: EightPoint,
+    pub minimal_solver: MinimalSolver,
+    pub minimal_solutions: MinimalSolutions,
+    pub focal_solver: FocalSolver,
+    /// The CSV of `focal_solver = "external"` (see [`crate::focal_file`]),
+    /// relative to the working directory; `{seed}` is replaced by the seed.
+    /// Answers are used as given (truncated when `truncate_focals`); a
+    /// non-finite one leaves the hypothesis without focals. Default empty
+    /// (not serialised when empty).
+    #[serde(skip_serializing_if = "String::is_empty")]
+    pub focal_file: String,
+    pub weight_sets: WeightSets,
+    pub max_iters: usize,
+    pub focal_failure: OnFailure,
+    pub truncate_focals: bool,
+    pub local_test: LocalTest,
+    pub linkage: Linkage,
+    pub min_cluster_size: usize,
+    /// The run's seed; scene `s` is segmented with the seed
+    /// [`crate::pipeline::scene_seed`]`(seed, s)`, as in every committed result.
+    pub seed: u64,
+}
+
+impl Default for PipelineConfig {
+    fn default() -> Self {
+        Self::from_params(Params::default())
+    }
+}
+
+/// The keys of [`PipelineConfig`] in declaration order: the order of the
+/// swept-parameter columns in every output file.
+pub const PIPELINE_KEYS: [&str; 25] = [
+    "method",
+    "num_samples",
+    "mss_size",
+    "thr_px",
+    "tau_diff",
+    "tau_range",
+    "irls_iters",
+    "irls_fit",
+    "irls_unit_weight_fallback",
+    "irls_sigma_offset_px",
+    "irls_polish",
+    "refine",
+    "eight_point",
+    "minimal_solver",
+    "minimal_solutions",
+    "focal_solver",
+    "focal_file",
+    "weight_sets",
+    "max_iters",
+    "focal_failure",
+    "truncate_focals",
+    "local_test",
+    "linkage",
+    "min_cluster_size",
+    "seed",
+];
+
+impl PipelineConfig {
+    /// The table of `params`, without a focal file.
+    pub fn from_params(p: Params) -> Self {
+        Self {
+            method: p.method,
+            num_samples: p.num_samples,
+            mss_size: p.mss_size,
+            thr_px: p.thr_px,
+            tau_diff: p.tau_diff,
+            tau_range: p.tau_range,
+            irls_iters: p.irls_iters,
+            irls_fit: p.irls_fit,
+            irls_unit_weight_fallback: p.irls_unit_weight_fallback,
+            irls_sigma_offset_px: p.irls_sigma_offset_px,
+            irls_polish: p.irls_polish,
+            refine: p.refine,
+            eight_point: p.eight_point,
+            minimal_solver: p.minimal_solver,
+            minimal_solutions: p.minimal_solutions,
+            focal_solver: p.focal_solver,
+            focal_file: String::new(),
+            weight_sets: p.weight_sets,
+            max_iters: p.max_iters,
+            focal_failure: p.focal_failure,
+            truncate_focals: p.truncate_focals,
+            local_test: p.local_test,
+            linkage: p.linkage,
+            min_cluster_size: p.min_cluster_size,
+            seed: p.seed,
+        }
+    }
+
+    /// The method's parameters, with the run's seed.
+    pub fn params(&self) -> Params {
+        Params {
+            method: self.method,
+            num_samples: self.num_samples,
+            mss_size: self.mss_size,
+            thr_px: self.thr_px,
+            tau_diff: self.tau_diff,
+            tau_range: self.tau_range,
+            irls_iters: self.irls_iters,
+            irls_fit: self.irls_fit,
+            irls_unit_weight_fallback: self.irls_unit_weight_fallback,
+            irls_sigma_offset_px: self.irls_sigma_offset_px,
+            irls_polish: self.irls_polish,
+            refine: self.refine,
+            eight_point: self.eight_point,
+            minimal_solver: self.minimal_solver,
+            minimal_solutions: self.minimal_solutions,
+            focal_solver: self.focal_solver,
+            weight_sets: self.weight_sets.clone(),
+            max_iters: self.max_iters,
+            focal_failure: self.focal_failure,
+            truncate_focals: self.truncate_focals,
+            local_test: self.local_test,
+            linkage: self.linkage,
+            min_cluster_size: self.min_cluster_size,
+            seed: self.seed,
+        }
+    }
+
+    /// The method's parameters for the scene named `scene`: the seed is
+    /// [`crate::pipeline::scene_seed`]`(seed, scene)`.
+    pub fn scene_params(&self, scene: &str) -> Params {
+        Params {
+            seed: crate::pipeline::scene_seed(self.seed, scene),
+            ..self.params()
+        }
+    }
+
+    /// Checks the ranges serde cannot ([`Params::validate`]) and that
+    /// `focal_file` is given with `focal_solver = "external"`.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        self.params().validate()?;
+        if self.focal_solver == FocalSolver::External && self.focal_file.is_empty() {
+            return Err(ParamError {
+                key: "focal_file",
+                message: "must name the CSV of focal lengths when focal_solver = \"external\""
+                    .into(),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// A file that gives `[pipeline]` parameters: an experiment file (its other
+/// tables are ignored) or a file holding only a `[pipeline]` table.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PipelineFile {
+    #[serde(default)]
+    pipeline: PipelineConfig,
+    #[serde(default, rename = "name")]
+    _name: Option<toml::Value>,
+    #[serde(default, rename = "description")]
+    _description: Option<toml::Value>,
+    #[serde(default, rename = "dataset")]
+    _dataset: Option<toml::Value>,
+    #[serde(default, rename = "sweep")]
+    _sweep: Option<toml::Value>,
+    #[serde(default, rename = "compare")]
+    _compare: Option<toml::Value>,
+    #[serde(default, rename = "plots")]
+    _plots: Option<toml::Value>,
+}
+
+impl PipelineConfig {
+    /// Reads the `[pipeline]` table of a file (missing keys take their
+    /// defaults) and checks it.
+    pub fn load(path: &Path) -> Result<Self, ConfigError> {
+        let text = std::fs::read_to_string(path).map_err(|source| ConfigError::Read {
+            file: path.to_path_buf(),
+            source,
+        })?;
+        let file: PipelineFile = parse_toml(&text, path)?;
+        file.pipeline.validate().map_err(|e| {
+            let key = format!("pipeline.{}", e.key);
+            ConfigError::invalid(path, key.clone(), e.message).with_line(&text, &key)
+        })?;
+        Ok(file.pipeline)
+    }
+}
