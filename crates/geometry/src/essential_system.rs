@@ -134,18 +134,19 @@ impl EssentialSystem {
         }
         // P = E Eᵀ, then 2 P − tr(P) I.
         let mut p = [[[0.0; 10]; 3]; 3];
-        for i in 0..3 {
-            for j in 0..3 {
-                for k in 0..3 {
-                    add_linear_product(&mut p[i][j], &e[i][k], &e[j][k]);
+        for (i, p_row) in p.iter_mut().enumerate() {
+            for (j, entry) in p_row.iter_mut().enumerate() {
+                for (a, b) in e[i].iter().zip(&e[j]) {
+                    add_linear_product(entry, a, b);
                 }
             }
         }
         let trace: Quadratic = std::array::from_fn(|k| p[0][0][k] + p[1][1][k] + p[2][2][k]);
         for (i, row) in p.iter_mut().enumerate() {
-            for k in 0..10 {
-                row[i][k] -= 0.5 * trace[k];
-            }
+            row[i]
+                .iter_mut()
+                .zip(&trace)
+                .for_each(|(v, t)| *v -= 0.5 * t);
             row.iter_mut().flatten().for_each(|v| *v *= 2.0);
         }
         for r in 0..3 {
