@@ -113,7 +113,13 @@ fn add_quadratic_product(acc: &mut Cubic, a: &Quadratic, b: &Linear) {
 /// The ten constraints `det E` and `2 E Eᵀ E − tr(E Eᵀ) E` (row-major) for
 /// `E = x X + y Y + z Z + W`, as rows of coefficients over [`MONOMIALS`].
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct EssentialSystem(pub SMatrix<f64, 10, 20>);
+pub(crate) struct EssentialSystem {
+    /// Row `k`: the coefficients of equation `k` (0: `det E`, then the
+    /// trace constraint row-major) over [`MONOMIALS`].
+    pub coefficients: SMatrix<f64, 10, 20>,
+    /// Their magnitudes (for the terms' scale `Σ |term|`).
+    magnitudes: SMatrix<f64, 10, 20>,
+}
 
 impl EssentialSystem {
     /// Expands the constraints of the basis `[X, Y, Z, W]`.
@@ -156,37 +162,34 @@ impl EssentialSystem {
                 }
             }
         }
-        Self(SMatrix::from_fn(|r, c| rows[r][c]))
+        let coefficients = SMatrix::from_fn(|r, c| rows[r][c]);
+        Self {
+            coefficients,
+            magnitudes: coefficients.abs(),
+        }
     }
 }
 
 impl Equations for EssentialSystem {
+    /// Values and gradients as one product `C [m ∂ₓm ∂ᵧm ∂_z m]` of the
+    /// coefficients with the monomial vector and its partial derivatives;
+    /// `Σ |term| = |C| |m|`.
     fn evaluate(&self, p: [f64; 3]) -> [(f64, [f64; 3], f64); 10] {
         let powers = |t: f64| [1.0, t, t * t, t * t * t];
         let (px, py, pz) = (powers(p[0]), powers(p[1]), powers(p[2]));
         let lower = |pw: &[f64; 4], a: usize| if a == 0 { 0.0 } else { a as f64 * pw[a - 1] };
-        let mut value = [0.0; 20];
-        let mut grad = [[0.0; 3]; 20];
+        let mut monomials = SMatrix::<f64, 20, 4>::zeros();
         for (j, &(a, b, c)) in MONOMIALS.iter().enumerate() {
-            value[j] = px[a] * py[b] * pz[c];
-            grad[j] = [
-                lower(&px, a) * py[b] * pz[c],
-                px[a] * lower(&py, b) * pz[c],
-                px[a] * py[b] * lower(&pz, c),
-            ];
+            monomials[(j, 0)] = px[a] * py[b] * pz[c];
+            monomials[(j, 1)] = lower(&px, a) * py[b] * pz[c];
+            monomials[(j, 2)] = px[a] * lower(&py, b) * pz[c];
+            monomials[(j, 3)] = px[a] * py[b] * lower(&pz, c);
         }
+        let evaluated = self.coefficients * monomials;
+        let magnitude = self.magnitudes * monomials.column(0).abs();
         std::array::from_fn(|k| {
-            let (mut v, mut g, mut m) = (0.0, [0.0; 3], 0.0);
-            for j in 0..20 {
-                let coeff = self.0[(k, j)];
-                let term = coeff * value[j];
-                v += term;
-                m += term.abs();
-                for (gi, dj) in g.iter_mut().zip(grad[j]) {
-                    *gi += coeff * dj;
-                }
-            }
-            (v, g, m)
+            let row = evaluated.row(k);
+            (row[0], [row[1], row[2], row[3]], magnitude[k])
         })
     }
 }
@@ -219,7 +222,7 @@ mod tests {
             std::array::from_fn(|k| if k == 0 { det(&e) } else { trace[k - 1] });
         for (k, equation) in dense.iter().enumerate() {
             for (j, &(a, b, c)) in MONOMIALS.iter().enumerate() {
-                let d = (system.0[(k, j)] - equation.coeff(a, b, c)).abs();
+                let d = (system.coefficients[(k, j)] - equation.coeff(a, b, c)).abs();
                 assert!(d < 1e-14, "equation {k}, monomial {j}: {d:e}");
             }
         }

@@ -98,7 +98,7 @@ pub fn five_point(
         std::array::from_fn(|i| epipolar_row(q1[i].into(), q2[i].into()));
     let basis = null_basis::<4>(&rows)?.map(|v| matrix_from_row_major(&v));
     let system = EssentialSystem::new(&basis);
-    let hidden = hidden_variable_matrix(&system.0)?;
+    let hidden = hidden_variable_matrix(&system.coefficients)?;
     let roots = sturm_roots(&determinant(&hidden)).ok_or(GeometryError::Degenerate(
         "5-point: the degree-10 polynomial is not finite or vanishes",
     ))?;
