@@ -1,8 +1,8 @@
-//! Real eigenpairs of small non-symmetric matrices (the action and companion
-//! matrices of the minimal solvers): eigenvalues from nalgebra's real Schur
-//! decomposition, one eigenvector per real eigenvalue by inverse iteration,
-//! and the real roots of a univariate polynomial through its companion
-//! matrix, polished by Newton steps.
+//! Real eigenpairs of small non-symmetric matrices (the 20 × 20 companion
+//! linearisation of the 6-point resultant): eigenvalues from nalgebra's
+//! real Schur decomposition, one eigenvector per real eigenvalue by inverse
+//! iteration, and the real roots of a univariate polynomial through its
+//! companion matrix, polished by Newton steps.
 
 use nalgebra::{DMatrix, DVector};
 

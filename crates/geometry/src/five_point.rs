@@ -1,7 +1,7 @@
 //! The 5-point essential-matrix solver: Nistér 2004 ("An efficient solution
-//! to the five-point relative pose problem", PAMI 26(6)) in the Gröbner-basis
-//! form of Stewénius, Engels & Nistér 2006 ("Recent developments on direct
-//! relative orientation", ISPRS J. 60, §3).
+//! to the five-point relative pose problem", PAMI 26(6)), with the
+//! elimination of Stewénius, Engels & Nistér 2006 ("Recent developments on
+//! direct relative orientation", ISPRS J. 60, §3).
 //!
 //! Five matches of calibrated bearings `q1 ↔ q2` give five equations
 //! `q2ᵀ E q1 = 0`; their null space is four-dimensional,
@@ -13,57 +13,44 @@
 //! ```
 //!
 //! (Nistér Eqs. 4–5). Their coefficients form a 10 × 20 matrix over the
-//! monomials `x³, x²y, x²z, xy², xyz, xz², y³, y²z, yz², z³ | x², xy, xz,
-//! y², yz, z², x, y, z, 1`; Gauss–Jordan elimination of the first block
-//! (`[I | B]`) expresses the six cubics divisible by `x` in the ten
-//! monomials after the bar, which gives the 10 × 10 action matrix of
-//! multiplication by `x` on the quotient ring (Stewénius et al. 2006, §3.3).
-//! Its real eigenvalues are the `x` of the real solutions; its eigenvectors
-//! are the monomial vectors, from which `y = v_y / v_1`, `z = v_z / v_1`.
-//! Each root is then polished by Gauss–Newton steps on the ten equations.
-//! Up to 10 solutions.
+//! monomials `x³, y³, x²y, xy², x²z, x², y²z, y², xyz, xy | xz², xz, x,
+//! yz², yz, y, z³, z², z, 1` (Nistér's Table 1); LU elimination of the
+//! first block leaves rows `⟨x²z⟩, ⟨x²⟩, ⟨y²z⟩, ⟨y²⟩, ⟨xyz⟩, ⟨xy⟩` whose
+//! remaining monomials are `[x, y, 1]` times powers of `z`. The three
+//! differences `⟨x²z⟩ − z⟨x²⟩`, `⟨y²z⟩ − z⟨y²⟩`, `⟨xyz⟩ − z⟨xy⟩` form a
+//! 3 × 3 matrix `B(z)` (cubic, cubic, quartic columns) with
+//! `B(z) (x, y, 1)ᵀ = 0` (Nistér §3.2, Eqs. 11–14), so `z` is a real root
+//! of the degree-10 polynomial `det B(z)`. Its real roots come from a Sturm
+//! sequence and bracketed Newton steps (no eigen-decomposition); `(x, y, 1)`
+//! is the cross product of two rows of `B(z)`. Each root is then polished
+//! by Gauss–Newton steps on the ten equations. Up to 10 solutions.
 
-use crate::action::{null_vector, real_eigenvalues};
 use crate::eight_point::finish;
+use crate::essential_system::EssentialSystem;
 use crate::minimal::{
     check_sample_size, epipolar_row, is_duplicate, matrix_from_row_major, null_basis,
 };
-use crate::poly::{det, mat_mul, polish_root, trace_constraint, transpose, Poly3, PolyMatrix};
+use crate::poly::polish_root;
+use crate::sturm::sturm_roots;
 use crate::GeometryError;
-use nalgebra::{DMatrix, Matrix3, SMatrix, Vector3};
+use nalgebra::{Matrix3, SMatrix, Vector3};
 
 /// Number of matches of the 5-point solver.
 pub const FIVE_POINT_SAMPLE: usize = 5;
 
-/// Gauss–Newton steps on the ten constraints that polish each root read off
-/// the action matrix (its eigenvalues of a non-normal matrix carry errors
-/// up to ~1e-8; two steps bring them to rounding level).
+/// Gauss–Newton steps on the ten constraints that polish each root (a
+/// step is kept only while it lowers the residual; from the Sturm roots
+/// one step usually reaches rounding level).
 const POLISH_STEPS: usize = 3;
 
-/// Exponents `(x, y, z)` of the 20 monomials of degree ≤ 3, in the
-/// elimination order of Stewénius et al. 2006 (the 10 cubics first).
-const MONOMIALS: [(usize, usize, usize); 20] = [
-    (3, 0, 0),
-    (2, 1, 0),
-    (2, 0, 1),
-    (1, 2, 0),
-    (1, 1, 1),
-    (1, 0, 2),
-    (0, 3, 0),
-    (0, 2, 1),
-    (0, 1, 2),
-    (0, 0, 3),
-    (2, 0, 0),
-    (1, 1, 0),
-    (1, 0, 1),
-    (0, 2, 0),
-    (0, 1, 1),
-    (0, 0, 2),
-    (1, 0, 0),
-    (0, 1, 0),
-    (0, 0, 1),
-    (0, 0, 0),
-];
+/// A candidate whose `(x, y, 1)` has a last entry below this fraction of
+/// its norm is a solution at infinity (`E` without a `W` component) and is
+/// dropped.
+const AT_INFINITY: f64 = 1e-12;
+
+/// `B(z)`: three rows of `[x-coefficient, y-coefficient, 1-coefficient]`,
+/// each a polynomial in `z` with ascending coefficients (degrees 3, 3, 4).
+type HiddenMatrix = [[[f64; 5]; 3]; 3];
 
 /// All real essential matrices (up to 10) consistent with five matches of
 /// calibrated bearings: `q2ᵀ E q1 = 0` for each match, `det E = 0` and
@@ -107,30 +94,21 @@ pub fn five_point(
     check_sample_size(x1.len(), FIVE_POINT_SAMPLE)?;
     let q1 = unit_bearings(x1, 1)?;
     let q2 = unit_bearings(x2, 2)?;
-    let rows: Vec<[f64; 9]> = q1
-        .iter()
-        .zip(&q2)
-        .map(|(a, b)| epipolar_row((*a).into(), (*b).into()))
-        .collect();
+    let rows: [[f64; 9]; FIVE_POINT_SAMPLE] =
+        std::array::from_fn(|i| epipolar_row(q1[i].into(), q2[i].into()));
     let basis = null_basis::<4>(&rows)?.map(|v| matrix_from_row_major(&v));
-    let equations = constraints(&basis);
-    let coefficients = constraint_matrix(&equations);
-    let action = action_matrix(&coefficients)?;
-    let values = real_eigenvalues(&action).ok_or(GeometryError::Degenerate(
-        "5-point: eigenvalues of the action matrix did not converge",
+    let system = EssentialSystem::new(&basis);
+    let hidden = hidden_variable_matrix(&system.coefficients)?;
+    let roots = sturm_roots(&determinant(&hidden)).ok_or(GeometryError::Degenerate(
+        "5-point: the degree-10 polynomial is not finite or vanishes",
     ))?;
     let [bx, by, bz, bw] = basis;
-    let mut solutions = Vec::with_capacity(values.len());
-    for x in values {
-        let shifted = &action - DMatrix::identity(10, 10) * x;
-        let Some(v) = null_vector(&shifted) else {
+    let mut solutions = Vec::with_capacity(roots.as_slice().len());
+    for &z in roots.as_slice() {
+        let Some((x, y)) = back_substitute(&hidden, z) else {
             continue;
         };
-        // v = (x², xy, xz, y², yz, z², x, y, z, 1) up to scale.
-        if v[9].abs() <= 1e-12 * v.norm() {
-            continue;
-        }
-        let ([x, y, z], _) = polish_root(&equations, [x, v[7] / v[9], v[8] / v[9]], POLISH_STEPS);
+        let ([x, y, z], _) = polish_root(&system, [x, y, z], POLISH_STEPS);
         let e = finish(bx * x + by * y + bz * z + bw)?;
         if !is_duplicate(solutions.iter(), &e) {
             solutions.push(e);
@@ -140,56 +118,35 @@ pub fn five_point(
 }
 
 /// The bearings scaled to unit length; errors name the image and index.
-fn unit_bearings(x: &[Vector3<f64>], image: usize) -> Result<Vec<Vector3<f64>>, GeometryError> {
+fn unit_bearings(
+    x: &[Vector3<f64>],
+    image: usize,
+) -> Result<[Vector3<f64>; FIVE_POINT_SAMPLE], GeometryError> {
     let field = if image == 1 { "bearing1" } else { "bearing2" };
-    x.iter()
-        .enumerate()
-        .map(|(index, q)| {
-            if !q.iter().all(|v| v.is_finite()) {
-                return Err(GeometryError::NonFinite { field, index });
-            }
-            let norm = q.norm();
-            if norm == 0.0 {
-                return Err(GeometryError::ZeroBearing { image, index });
-            }
-            if !norm.is_finite() {
-                return Err(GeometryError::Overflow("bearing norm"));
-            }
-            Ok(q / norm)
-        })
-        .collect()
-}
-
-/// `det E` and the nine entries of `2 E Eᵀ E − tr(E Eᵀ) E` for
-/// `E = x X + y Y + z Z + W` (Nistér 2004, Eqs. 4–5).
-fn constraints(basis: &[Matrix3<f64>; 4]) -> [Poly3; 10] {
-    let [bx, by, bz, bw] = basis;
-    let e: PolyMatrix = std::array::from_fn(|r| {
-        std::array::from_fn(|c| Poly3::linear(bx[(r, c)], by[(r, c)], bz[(r, c)], bw[(r, c)]))
-    });
-    let eet = mat_mul(&e, &transpose(&e));
-    let trace = trace_constraint(&eet, &e);
-    std::array::from_fn(|k| if k == 0 { det(&e) } else { trace[k - 1] })
-}
-
-/// The 10 × 20 coefficient matrix of the ten constraints, columns in
-/// [`MONOMIALS`] order.
-fn constraint_matrix(equations: &[Poly3; 10]) -> SMatrix<f64, 10, 20> {
-    let mut m = SMatrix::<f64, 10, 20>::zeros();
-    for (row, equation) in equations.iter().enumerate() {
-        for (col, &(a, b, c)) in MONOMIALS.iter().enumerate() {
-            m[(row, col)] = equation.coeff(a, b, c);
+    let mut out = [Vector3::zeros(); FIVE_POINT_SAMPLE];
+    for (index, (q, unit)) in x.iter().zip(out.iter_mut()).enumerate() {
+        if !q.iter().all(|v| v.is_finite()) {
+            return Err(GeometryError::NonFinite { field, index });
         }
+        let norm = q.norm();
+        if norm == 0.0 {
+            return Err(GeometryError::ZeroBearing { image, index });
+        }
+        if !norm.is_finite() {
+            return Err(GeometryError::Overflow("bearing norm"));
+        }
+        *unit = q / norm;
     }
-    m
+    Ok(out)
 }
 
-/// The 10 × 10 action matrix of multiplication by `x` on the basis
-/// `(x², xy, xz, y², yz, z², x, y, z, 1)`: `x · b = M b` at every solution.
-/// Rows 0–5 come from the eliminated template `[I | B]` (`x·x² = x³ = −B₀ b`,
-/// …, `x·z² = xz² = −B₅ b`), rows 6–9 are shifts (`x·x = x²`, `x·y = xy`,
-/// `x·z = xz`, `x·1 = x`).
-fn action_matrix(coefficients: &SMatrix<f64, 10, 20>) -> Result<DMatrix<f64>, GeometryError> {
+/// `B(z)` from the 10 × 20 coefficient matrix: LU elimination of the first
+/// ten columns, then `⟨x²z⟩ − z⟨x²⟩`, `⟨y²z⟩ − z⟨y²⟩`, `⟨xyz⟩ − z⟨xy⟩`
+/// (Nistér 2004, §3.2). Columns 10–19 are `xz², xz, x, yz², yz, y, z³, z²,
+/// z, 1`.
+fn hidden_variable_matrix(
+    coefficients: &SMatrix<f64, 10, 20>,
+) -> Result<HiddenMatrix, GeometryError> {
     let left = coefficients.fixed_view::<10, 10>(0, 0).into_owned();
     let right = coefficients.fixed_view::<10, 10>(0, 10).into_owned();
     let b = left
@@ -199,14 +156,57 @@ fn action_matrix(coefficients: &SMatrix<f64, 10, 20>) -> Result<DMatrix<f64>, Ge
         .ok_or(GeometryError::Degenerate(
             "5-point: singular elimination template",
         ))?;
-    let mut m = DMatrix::zeros(10, 10);
-    for r in 0..6 {
-        for c in 0..10 {
-            m[(r, c)] = -b[(r, c)];
+    Ok([(4, 5), (6, 7), (8, 9)].map(|(with_z, without)| {
+        // Row `with_z` minus z times row `without`, per block of columns.
+        let shifted = |first: usize, len: usize| {
+            let mut p = [0.0; 5];
+            for k in 0..len {
+                // Column first + k holds the power len − 1 − k of z.
+                p[len - 1 - k] += b[(with_z, first + k)];
+                p[len - k] -= b[(without, first + k)];
+            }
+            p
+        };
+        [shifted(0, 3), shifted(3, 3), shifted(6, 4)]
+    }))
+}
+
+/// `Σ a_i tⁱ · Σ b_j tʲ` added into `out`.
+fn add_product(a: &[f64], b: &[f64], out: &mut [f64]) {
+    for (i, ai) in a.iter().enumerate() {
+        for (j, bj) in b.iter().enumerate() {
+            out[i + j] += ai * bj;
         }
     }
-    for (r, c) in [(6, 0), (7, 1), (8, 2), (9, 6)] {
-        m[(r, c)] = 1.0;
+}
+
+/// `det B(z)`, ascending coefficients of degree ≤ 10 (cofactor expansion
+/// along the third column).
+fn determinant(m: &HiddenMatrix) -> [f64; 11] {
+    let mut out = [0.0; 11];
+    for r in 0..3 {
+        let (r1, r2) = ((r + 1) % 3, (r + 2) % 3);
+        let mut minor = [0.0; 7];
+        add_product(&m[r1][0][..4], &m[r2][1][..4], &mut minor);
+        let negated = m[r2][0].map(|v| -v);
+        add_product(&negated[..4], &m[r1][1][..4], &mut minor);
+        add_product(&minor, &m[r][2], &mut out);
     }
-    Ok(m)
+    out
+}
+
+/// `(x, y)` at the root `z`: the null vector `(x, y, 1)` of `B(z)` as the
+/// largest cross product of two of its rows; `None` at infinity.
+fn back_substitute(m: &HiddenMatrix, z: f64) -> Option<(f64, f64)> {
+    let eval = |p: &[f64; 5]| p.iter().rev().fold(0.0, |acc, c| acc * z + c);
+    let rows = m.map(|row| Vector3::new(eval(&row[0]), eval(&row[1]), eval(&row[2])));
+    let v = [
+        rows[0].cross(&rows[1]),
+        rows[0].cross(&rows[2]),
+        rows[1].cross(&rows[2]),
+    ]
+    .into_iter()
+    .max_by(|a, b| a.norm_squared().total_cmp(&b.norm_squared()))?;
+    (v[2].abs() > AT_INFINITY * v.norm() && v.iter().all(|c| c.is_finite()))
+        .then(|| (v[0] / v[2], v[1] / v[2]))
 }

@@ -27,6 +27,7 @@
 mod action;
 pub mod eight_point;
 pub mod error;
+mod essential_system;
 pub mod five_point;
 pub mod irls;
 mod linalg;
@@ -37,6 +38,7 @@ mod poly;
 pub mod sampson;
 pub mod seven_point;
 pub mod six_point_focal;
+mod sturm;
 pub mod types;
 
 pub use eight_point::{

@@ -187,13 +187,27 @@ pub(crate) fn trace_constraint(p: &PolyMatrix, a: &PolyMatrix) -> [Poly3; 9] {
     out
 }
 
-/// Relative residual of the system `equations` at `p`:
+/// A system of ten polynomial equations in three unknowns that can be
+/// evaluated with its Jacobian (the constraint systems of the minimal
+/// solvers).
+pub(crate) trait Equations {
+    /// For each equation at `p`: its value, its gradient, and `Σ |term|`
+    /// (the scale against which the value's rounding error is judged).
+    fn evaluate(&self, p: [f64; 3]) -> [(f64, [f64; 3], f64); 10];
+}
+
+impl Equations for [Poly3; 10] {
+    fn evaluate(&self, p: [f64; 3]) -> [(f64, [f64; 3], f64); 10] {
+        self.map(|e| e.eval(p[0], p[1], p[2]))
+    }
+}
+
+/// Relative residual of an evaluated system:
 /// `‖(e_k(p))_k‖ / Σ_k Σ |terms of e_k(p)|` (0 at an exact root, of order
 /// `ε` at a root computed in floating point).
-pub(crate) fn relative_residual(equations: &[Poly3], p: [f64; 3]) -> f64 {
+fn relative_residual(values: &[(f64, [f64; 3], f64); 10]) -> f64 {
     let (mut r2, mut scale) = (0.0, 0.0);
-    for e in equations {
-        let (v, _, m) = e.eval(p[0], p[1], p[2]);
+    for (v, _, m) in values {
         r2 += v * v;
         scale += m;
     }
@@ -205,19 +219,20 @@ pub(crate) fn relative_residual(equations: &[Poly3], p: [f64; 3]) -> f64 {
 }
 
 /// Up to `steps` Gauss–Newton steps on the overdetermined system
-/// `equations(p) = 0` from `p`, each kept only if it lowers
-/// [`relative_residual`]. Returns the polished point and its residual.
+/// `equations(p) = 0` from `p`, each kept only if it lowers the relative
+/// residual `‖(e_k(p))_k‖ / Σ_k Σ |terms of e_k(p)|`. Returns the polished
+/// point and its residual.
 pub(crate) fn polish_root(
-    equations: &[Poly3; 10],
+    equations: &impl Equations,
     mut p: [f64; 3],
     steps: usize,
 ) -> ([f64; 3], f64) {
-    let mut residual = relative_residual(equations, p);
+    let mut values = equations.evaluate(p);
+    let mut residual = relative_residual(&values);
     for _ in 0..steps {
         let mut jac = nalgebra::SMatrix::<f64, 10, 3>::zeros();
         let mut r = nalgebra::SVector::<f64, 10>::zeros();
-        for (k, e) in equations.iter().enumerate() {
-            let (v, g, _) = e.eval(p[0], p[1], p[2]);
+        for (k, (v, g, _)) in values.iter().enumerate() {
             r[k] = -v;
             for j in 0..3 {
                 jac[(k, j)] = g[j];
@@ -232,11 +247,13 @@ pub(crate) fn polish_root(
             break;
         }
         let next = [p[0] + delta[0], p[1] + delta[1], p[2] + delta[2]];
-        let next_residual = relative_residual(equations, next);
+        let next_values = equations.evaluate(next);
+        let next_residual = relative_residual(&next_values);
         if next_residual.partial_cmp(&residual) != Some(std::cmp::Ordering::Less) {
             break;
         }
         p = next;
+        values = next_values;
         residual = next_residual;
     }
     (p, residual)

@@ -1,0 +1,302 @@
+//! Real roots of a univariate polynomial without an eigen-decomposition:
+//! a Sturm sequence counts the distinct real roots in an interval (Sturm's
+//! theorem, e.g. Basu, Pollack & Roy, "Algorithms in Real Algebraic
+//! Geometry", Thm. 2.50), bisection isolates them inside Fujiwara's root
+//! bound, and a bracketed Newton iteration (bisection as safeguard)
+//! converges on each isolated root. Fixed-size arrays, no allocation.
+
+/// Largest degree handled.
+pub(crate) const MAX_DEGREE: usize = 16;
+
+/// Bisection depth at which a sub-interval that still holds several roots
+/// (a cluster below `2⁻⁶⁴` of the root bound) gives up and reports its
+/// midpoint once.
+const MAX_DEPTH: usize = 64;
+
+/// Iteration cap of the bracketed Newton solve of one isolated root.
+const MAX_NEWTON: usize = 100;
+
+/// Up to [`MAX_DEGREE`] real roots in ascending order.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Roots {
+    values: [f64; MAX_DEGREE],
+    len: usize,
+}
+
+impl Roots {
+    /// The roots found, ascending.
+    pub fn as_slice(&self) -> &[f64] {
+        &self.values[..self.len]
+    }
+
+    fn push(&mut self, t: f64) {
+        if self.len < MAX_DEGREE {
+            self.values[self.len] = t;
+            self.len += 1;
+        }
+    }
+}
+
+/// A polynomial `Σ c_k tᵏ` of degree `degree` (`c[degree] ≠ 0`).
+#[derive(Debug, Clone, Copy)]
+struct Poly {
+    c: [f64; MAX_DEGREE + 1],
+    degree: usize,
+}
+
+impl Poly {
+    fn eval(&self, t: f64) -> f64 {
+        self.c[..=self.degree]
+            .iter()
+            .rev()
+            .fold(0.0, |acc, &c| acc * t + c)
+    }
+
+    /// The value and the derivative at `t` (Horner).
+    fn eval_with_derivative(&self, t: f64) -> (f64, f64) {
+        self.c[..=self.degree]
+            .iter()
+            .rev()
+            .fold((0.0, 0.0), |(p, dp), &c| (p * t + c, dp * t + p))
+    }
+
+    /// `self` divided by `|leading coefficient|` (signs kept).
+    fn normalised(mut self) -> Self {
+        let lead = self.c[self.degree].abs();
+        self.c[..=self.degree].iter_mut().for_each(|c| *c /= lead);
+        self
+    }
+}
+
+/// The Sturm sequence `p₀ = p, p₁ = p', p_{k+1} = −rem(p_{k−1}, p_k)`, each
+/// scaled to a leading coefficient of magnitude 1.
+struct Sturm {
+    seq: [Poly; MAX_DEGREE + 1],
+    len: usize,
+}
+
+impl Sturm {
+    fn new(p: Poly) -> Option<Self> {
+        let mut seq = [p; MAX_DEGREE + 1];
+        let mut derivative = Poly {
+            c: [0.0; MAX_DEGREE + 1],
+            degree: p.degree - 1,
+        };
+        for k in 1..=p.degree {
+            derivative.c[k - 1] = k as f64 * p.c[k];
+        }
+        seq[0] = p.normalised();
+        seq[1] = derivative.normalised();
+        let mut len = 2;
+        while seq[len - 1].degree > 0 {
+            let Some(r) = remainder(&seq[len - 2], &seq[len - 1]) else {
+                break;
+            };
+            let mut next = r.normalised();
+            next.c[..=next.degree].iter_mut().for_each(|c| *c = -*c);
+            if !next.c[..=next.degree].iter().all(|c| c.is_finite()) {
+                return None;
+            }
+            seq[len] = next;
+            len += 1;
+        }
+        Some(Self { seq, len })
+    }
+
+    /// Sign changes of the sequence at `t` (zeros skipped).
+    fn variations(&self, t: f64) -> usize {
+        count_changes(self.seq[..self.len].iter().map(|p| p.eval(t)))
+    }
+}
+
+fn count_changes(values: impl Iterator<Item = f64>) -> usize {
+    let mut last = 0.0;
+    let mut changes = 0;
+    for v in values.filter(|v| *v != 0.0) {
+        if last * v < 0.0 {
+            changes += 1;
+        }
+        last = v;
+    }
+    changes
+}
+
+/// The remainder of `a / b` (`deg a ≥ deg b`), trimmed of exactly zero
+/// leading coefficients; `None` when it is identically zero (`b` divides
+/// `a`: the sequence ends with their gcd).
+fn remainder(a: &Poly, b: &Poly) -> Option<Poly> {
+    let mut r = *a;
+    let lead = b.c[b.degree];
+    for shift in (0..=a.degree - b.degree).rev() {
+        let q = r.c[shift + b.degree] / lead;
+        for k in 0..=b.degree {
+            r.c[shift + k] -= q * b.c[k];
+        }
+        r.c[shift + b.degree] = 0.0;
+    }
+    let degree = (0..b.degree).rev().find(|&k| r.c[k] != 0.0)?;
+    r.degree = degree;
+    Some(r)
+}
+
+/// Fujiwara's bound `2 max_k |c_{n−k} / c_n|^{1/k}` on the magnitude of
+/// every root.
+fn root_bound(p: &Poly) -> f64 {
+    let n = p.degree;
+    let lead = p.c[n];
+    (1..=n)
+        .map(|k| {
+            let c = (p.c[n - k] / lead).abs();
+            let c = if k == n { c / 2.0 } else { c };
+            c.powf(1.0 / k as f64)
+        })
+        .fold(0.0, f64::max)
+        * 2.0
+}
+
+/// The distinct real roots of `Σ c_k tᵏ` (`coeffs[k] = c_k`, at most
+/// [`MAX_DEGREE`] + 1 of them; trailing exact zeros are dropped), ascending.
+/// A cluster of roots closer than `2⁻⁶⁴` times the root bound is reported
+/// once. `None` when a coefficient is not finite, all are zero, or the
+/// sequence overflows.
+pub(crate) fn sturm_roots(coeffs: &[f64]) -> Option<Roots> {
+    if coeffs.len() > MAX_DEGREE + 1 || !coeffs.iter().all(|c| c.is_finite()) {
+        return None;
+    }
+    let degree = coeffs.iter().rposition(|&c| c != 0.0)?;
+    let mut roots = Roots {
+        values: [0.0; MAX_DEGREE],
+        len: 0,
+    };
+    if degree == 0 {
+        return Some(roots);
+    }
+    let mut p = Poly {
+        c: [0.0; MAX_DEGREE + 1],
+        degree,
+    };
+    p.c[..=degree].copy_from_slice(&coeffs[..=degree]);
+    let p = p.normalised();
+    let sturm = Sturm::new(p)?;
+    let bound = root_bound(&p);
+    if !bound.is_finite() {
+        return None;
+    }
+    // Roots lie in (−bound, bound); the interval is widened slightly so
+    // that none sits on an end point.
+    let (lo, hi) = (-1.01 * bound - 1e-300, 1.01 * bound + 1e-300);
+    // Intervals (lo, hi, V(lo), V(hi), depth); left halves processed first.
+    let mut stack = [(0.0, 0.0, 0, 0, 0); 2 * MAX_DEPTH + 2];
+    stack[0] = (lo, hi, sturm.variations(lo), sturm.variations(hi), 0);
+    let mut top = 1;
+    while top > 0 {
+        top -= 1;
+        let (a, b, va, vb, depth) = stack[top];
+        let count = va.saturating_sub(vb);
+        if count == 0 {
+            continue;
+        }
+        if count == 1 {
+            let (pa, pb) = (p.eval(a), p.eval(b));
+            if pa * pb < 0.0 {
+                roots.push(bracketed_newton(&p, a, b, pa));
+                continue;
+            }
+        }
+        let mid = 0.5 * (a + b);
+        if depth >= MAX_DEPTH || mid <= a || mid >= b {
+            roots.push(mid);
+            continue;
+        }
+        let vm = sturm.variations(mid);
+        stack[top] = (mid, b, vm, vb, depth + 1);
+        stack[top + 1] = (a, mid, va, vm, depth + 1);
+        top += 2;
+    }
+    Some(roots)
+}
+
+/// The root of `p` in `(a, b)` with `p(a) p(b) < 0` (`pa = p(a)`): Newton
+/// steps that stay inside the shrinking bracket, bisection otherwise, until
+/// the step or the bracket is at rounding level.
+fn bracketed_newton(p: &Poly, mut a: f64, mut b: f64, pa: f64) -> f64 {
+    let negative_at_a = pa < 0.0;
+    let mut t = 0.5 * (a + b);
+    for _ in 0..MAX_NEWTON {
+        let (v, dv) = p.eval_with_derivative(t);
+        if v == 0.0 {
+            return t;
+        }
+        if (v < 0.0) == negative_at_a {
+            a = t;
+        } else {
+            b = t;
+        }
+        let newton = t - v / dv;
+        let next = if newton > a && newton < b && newton.is_finite() {
+            newton
+        } else {
+            0.5 * (a + b)
+        };
+        let step = (next - t).abs();
+        t = next;
+        if step <= 2.0 * f64::EPSILON * t.abs() || b - a <= 2.0 * f64::EPSILON * t.abs() {
+            break;
+        }
+    }
+    t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Ascending coefficients of `Π (t − r_i)`.
+    fn from_roots(roots: &[f64]) -> Vec<f64> {
+        let mut c = vec![1.0];
+        for &r in roots {
+            let mut next = vec![0.0; c.len() + 1];
+            for (k, &v) in c.iter().enumerate() {
+                next[k + 1] += v;
+                next[k] -= r * v;
+            }
+            c = next;
+        }
+        c
+    }
+
+    #[test]
+    fn recovers_ten_well_separated_roots() {
+        let want = [-7.5, -3.0, -1.2, -0.4, 0.05, 0.3, 1.1, 2.5, 4.0, 9.0];
+        let coeffs: Vec<f64> = from_roots(&want).iter().map(|c| c * 3.7).collect();
+        let got = sturm_roots(&coeffs).unwrap();
+        assert_eq!(got.as_slice().len(), want.len());
+        for (g, w) in got.as_slice().iter().zip(want) {
+            assert!((g - w).abs() < 1e-10 * (1.0 + w.abs()), "{g} vs {w}");
+        }
+    }
+
+    #[test]
+    fn complex_pairs_and_double_roots() {
+        // (t² + 1)(t − 2): one real root.
+        let got = sturm_roots(&[-2.0, 1.0, -2.0, 1.0]).unwrap();
+        assert_eq!(got.as_slice().len(), 1);
+        assert!((got.as_slice()[0] - 2.0).abs() < 1e-14);
+        // (t − 1)² (t + 3): the simple root, and the double root (which
+        // rounding may split into a close pair or hide) nowhere else.
+        let got = sturm_roots(&from_roots(&[1.0, 1.0, -3.0])).unwrap();
+        assert!((got.as_slice()[0] + 3.0).abs() < 1e-12);
+        assert!(got.as_slice()[1..].iter().all(|t| (t - 1.0).abs() < 1e-6));
+        // A trailing zero leading coefficient lowers the degree.
+        let got = sturm_roots(&[-1.0, 1.0, 0.0]).unwrap();
+        assert_eq!(got.as_slice(), &[1.0]);
+    }
+
+    #[test]
+    fn invalid_input_is_rejected() {
+        assert!(sturm_roots(&[1.0, f64::NAN]).is_none());
+        assert!(sturm_roots(&[0.0, 0.0]).is_none());
+        assert!(sturm_roots(&[0.0; MAX_DEGREE + 2]).is_none());
+        assert!(sturm_roots(&[2.0]).unwrap().as_slice().is_empty());
+    }
+}
