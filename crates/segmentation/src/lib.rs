@@ -36,6 +36,7 @@ mod params;
 mod result;
 mod sampling;
 mod segment;
+mod variants;
 
 pub use error::SegmentationError;
 pub use filter::{focal_filter, FilterOutcome};

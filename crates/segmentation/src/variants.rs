@@ -1,0 +1,121 @@
+//! The named switches of [`crate::Params`]: which method, which 8-point,
+//! which minimal solver and which of its solutions, which focal solver,
+//! which local test.
+
+/// Which hypotheses reach the clustering (Algorithm 1 steps 4–6).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
+pub enum Method {
+    /// Semi-calibrated T-Linkage: focal estimation, local test (Eq. 36) and
+    /// scene-level focal consensus (Eq. 37) filter the hypotheses.
+    Semical,
+    /// The uncalibrated baseline: every refined hypothesis is kept.
+    Baseline,
+}
+
+/// The 8-point variant of Algorithm 1 step 2.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
+pub enum EightPoint {
+    /// Hartley-normalised 8-point (the text).
+    Normalized,
+    /// Un-normalised system on centred pixel coordinates (the reference code).
+    Plain,
+}
+
+/// The minimal solver of Algorithm 1 step 2: how each sample becomes a
+/// hypothesis F.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
+pub enum MinimalSolver {
+    /// The 8-point algorithm on `mss_size` matches, in the variant of
+    /// [`crate::Params::eight_point`] (the thesis).
+    EightPoint,
+    /// The 7-point algorithm (Hartley & Zisserman §11.1.2): up to 3 F per
+    /// sample of 7, uncalibrated.
+    SevenPoint,
+    /// The 5-point essential-matrix solver (Nistér 2004; Stewénius, Engels,
+    /// Nistér 2006) in the coordinates `K(f)⁻¹ x` with `f` the focal prior:
+    /// up to 10 E per sample of 5, each turned into `F = K⁻ᵀ E K⁻¹`. The one
+    /// camera and its focal enter the hypotheses themselves.
+    FivePoint,
+    /// The 6-point solver for relative pose with one unknown focal length
+    /// shared by both views (Stewénius, Nistér, Kahl, Schaffalitzky 2008):
+    /// up to 15 (f, F) per sample of 6.
+    SixPointFocal,
+}
+
+impl MinimalSolver {
+    /// The matches one sample of this solver holds (the 8-point's is
+    /// [`crate::Params::mss_size`]).
+    pub fn sample_size(self, mss_size: usize) -> usize {
+        match self {
+            Self::EightPoint => mss_size,
+            Self::SevenPoint => geometry::SEVEN_POINT_SAMPLE,
+            Self::FivePoint => geometry::FIVE_POINT_SAMPLE,
+            Self::SixPointFocal => geometry::SIX_POINT_SAMPLE,
+        }
+    }
+}
+
+/// Which of a sample's solutions become hypotheses (minimal solvers other
+/// than the 8-point return several).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
+pub enum MinimalSolutions {
+    /// The solution with the most matches within `thr_px` (Sampson), first
+    /// on ties: one hypothesis per sample, as RANSAC scores a sample.
+    Best,
+    /// Every solution: a sample gives as many hypotheses as real solutions.
+    All,
+}
+
+/// The focal-length solver of Algorithm 1 step 4.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
+pub enum FocalSolver {
+    /// The robust iterative solver of Kocur, Kyselica and Kukelova (CVPR 2024),
+    /// multi-started over [`crate::Params::weight_sets`].
+    Kocur,
+    /// Bougnoux's closed form (Bougnoux 1998).
+    Bougnoux,
+    /// Answers computed outside this crate and handed in as data
+    /// ([`crate::HypothesisFocals::from_answers`], then
+    /// [`crate::segment_with`]); [`crate::segment`] refuses it.
+    External,
+}
+
+/// The local test of Algorithm 1 step 5 (Eq. 36).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
+pub enum LocalTest {
+    /// The thesis's Algorithm 1: a hypothesis failing Eq. 36 is discarded.
+    Algorithm1,
+    /// The reference code: only `f_avg <= 0` discards; the `|f1 - f2|` test
+    /// only decides which focals feed the KDE, and the band decides for all.
+    ReferenceCode,
+}
