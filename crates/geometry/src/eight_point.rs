@@ -506,7 +506,23 @@ where
         ));
     }
 
-    // Scaled rows are D · (centred rows), D = diag(s1s2, s1s2, s2, s1s2, s1s2, s2, s1, s1, 1).
+    let a = scaled_normal_matrix(&moments, s1, s2)?;
+
+    let f_hat = matrix_from_row_major(&smallest_eigenvector(&a)?);
+    // x̂ = T x; the denormalised matrix is F = T2ᵀ F̂ T1.
+    let t1 = Matrix3::new(s1, 0.0, -s1 * cx1, 0.0, s1, -s1 * cy1, 0.0, 0.0, 1.0);
+    let t2 = Matrix3::new(s2, 0.0, -s2 * cx2, 0.0, s2, -s2 * cy2, 0.0, 0.0, 1.0);
+    Ok(NormalizedSolution { f_hat, t1, t2 })
+}
+
+/// The normal matrix `XᵀWX` of the Hartley-scaled rows from the moments of
+/// the centred ones (see [`solve_normalized`]): scaled rows are
+/// `D · (centred rows)`, `D = diag(s1s2, s1s2, s2, s1s2, s1s2, s2, s1, s1, 1)`.
+fn scaled_normal_matrix(
+    moments: &[[f64; 6]; 6],
+    s1: f64,
+    s2: f64,
+) -> Result<[[f64; 9]; 9], GeometryError> {
     let s12 = s1 * s2;
     let scale = [s12, s12, s2, s12, s12, s2, s1, s1, 1.0];
     let mut a = [[0.0; 9]; 9];
@@ -522,12 +538,7 @@ where
     if !a.iter().flatten().all(|v| v.is_finite()) {
         return Err(GeometryError::Overflow("normal matrix"));
     }
-
-    let f_hat = matrix_from_row_major(&smallest_eigenvector(&a)?);
-    // x̂ = T x; the denormalised matrix is F = T2ᵀ F̂ T1.
-    let t1 = Matrix3::new(s1, 0.0, -s1 * cx1, 0.0, s1, -s1 * cy1, 0.0, 0.0, 1.0);
-    let t2 = Matrix3::new(s2, 0.0, -s2 * cx2, 0.0, s2, -s2 * cy2, 0.0, 0.0, 1.0);
-    Ok(NormalizedSolution { f_hat, t1, t2 })
+    Ok(a)
 }
 
 /// Index of the monomial `x_i x_k` of `x = (u, v, 1)` in

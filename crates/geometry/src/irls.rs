@@ -319,6 +319,39 @@ impl IrlsWorkspace {
         initial: Option<&Matrix3<f64>>,
         params: &IrlsParams,
     ) -> Result<IrlsSummary, GeometryError> {
+        let mut f = self.start(points, sample, initial, params)?;
+        let mut iterations = 0;
+        for iteration in 1..=params.max_iters {
+            iterations = iteration;
+            f = self.weighted_refit(points, params)?;
+            let change = self.update_inliers(points, &f, params, iteration)?;
+            // 3f: converged when the set changed by less than min_change.
+            if (change.changed as f64) < params.min_change * change.union as f64 {
+                break;
+            }
+            // 3a of the next iteration: residuals of the new inliers.
+            self.residuals_in.clear();
+            let all = &self.residuals_all;
+            self.residuals_in
+                .extend(self.inliers.iter().map(|&i| all[i]));
+        }
+        Ok(IrlsSummary {
+            f,
+            iterations,
+            inlier_count: self.inliers.len(),
+        })
+    }
+
+    /// The start of [`run`](Self::run): checks, the initial model, the
+    /// sample as the inlier set (polished first when asked) and its
+    /// residuals (step 3a).
+    fn start(
+        &mut self,
+        points: &Correspondences,
+        sample: &[usize],
+        initial: Option<&Matrix3<f64>>,
+        params: &IrlsParams,
+    ) -> Result<Matrix3<f64>, GeometryError> {
         params.validate()?;
         let n = points.len();
         if sample.len() < MIN_POINTS {
@@ -348,95 +381,96 @@ impl IrlsWorkspace {
         self.residuals_in.resize(self.inliers.len(), 0.0);
         sampson_residuals_signed_at(&f, points, &self.inliers, &mut self.residuals_in);
         self.residuals_all.resize(n, 0.0);
+        Ok(f)
+    }
 
-        let thr2 = params.thr_px * params.thr_px;
-        let mut iterations = 0;
-        for iteration in 1..=params.max_iters {
-            iterations = iteration;
-            // 3b-c: robust scale of the inlier residuals and Tukey weights.
-            let sigma = MAD_TO_SIGMA * mad_by_keys(&self.residuals_in, &mut self.keys)
-                + params.sigma_offset_px;
-            self.weights.clear();
-            if sigma.is_finite() && sigma > 0.0 {
-                let cs = params.tukey_c * sigma;
-                self.weights
-                    .extend(self.residuals_in.iter().map(|&r| tukey_weight(r / cs)));
-            } else {
-                self.weights.resize(self.inliers.len(), 1.0);
-            }
-
-            // 3d: weighted 8-point on the current inliers.
-            let weighted = refit(
-                params.fit,
-                points,
-                self.inliers
-                    .iter()
-                    .copied()
-                    .zip(self.weights.iter().copied()),
-            );
-            f = match weighted {
-                Ok(f) => f,
-                Err(GeometryError::TooFewWeightedPoints { .. } | GeometryError::Degenerate(_))
-                    if params.unit_weight_fallback =>
-                {
-                    refit(params.fit, points, self.inliers.iter().map(|&i| (i, 1.0)))?
-                }
-                Err(e) => return Err(e),
-            };
-            if let Some(k) = f.iter().position(|v| !v.is_finite()) {
-                return Err(GeometryError::NonFiniteMatrix {
-                    row: k % 3,
-                    col: k / 3,
-                });
-            }
-
-            // 3e: new inlier set from the residuals of all correspondences.
-            sampson_residuals_signed(&f, points, &mut self.residuals_all);
-            // min(thr², 4σ²) is thr² whenever MAD ≥ thr / (2 · 1.4826); the
-            // exact MAD is only needed below that (the margin covers rounding).
-            let mad_limit = params.thr_px / (2.0 * MAD_TO_SIGMA) * (1.0 + 1e-12);
-            let bound = match mad_below(&self.residuals_all, &mut self.keys, mad_limit) {
-                Some(mad) => {
-                    let sigma_all = MAD_TO_SIGMA * mad;
-                    if sigma_all.is_finite() && sigma_all > 0.0 {
-                        thr2.min(4.0 * sigma_all * sigma_all)
-                    } else {
-                        thr2
-                    }
-                }
-                None => thr2,
-            };
-            let (mut changed, mut union) = (0usize, 0usize);
-            for (inlier, &r) in self.mask.iter_mut().zip(&self.residuals_all) {
-                let new = r * r <= bound;
-                changed += usize::from(new != *inlier);
-                union += usize::from(new || *inlier);
-                *inlier = new;
-            }
-            self.collect_inliers();
-            if self.inliers.len() < MIN_POINTS {
-                return Err(GeometryError::TooFewInliers {
-                    got: self.inliers.len(),
-                    needed: MIN_POINTS,
-                    iteration,
-                });
-            }
-
-            // 3f: converged when the set changed by less than min_change.
-            if (changed as f64) < params.min_change * union as f64 {
-                break;
-            }
-            // 3a of the next iteration: residuals of the new inliers.
-            self.residuals_in.clear();
-            let all = &self.residuals_all;
-            self.residuals_in
-                .extend(self.inliers.iter().map(|&i| all[i]));
+    /// Steps 3b–3d: the robust scale of the inlier residuals, their Tukey
+    /// weights and the weighted 8-point on the current inliers.
+    fn weighted_refit(
+        &mut self,
+        points: &Correspondences,
+        params: &IrlsParams,
+    ) -> Result<Matrix3<f64>, GeometryError> {
+        // 3b-c: robust scale of the inlier residuals and Tukey weights.
+        let sigma =
+            MAD_TO_SIGMA * mad_by_keys(&self.residuals_in, &mut self.keys) + params.sigma_offset_px;
+        self.weights.clear();
+        if sigma.is_finite() && sigma > 0.0 {
+            let cs = params.tukey_c * sigma;
+            self.weights
+                .extend(self.residuals_in.iter().map(|&r| tukey_weight(r / cs)));
+        } else {
+            self.weights.resize(self.inliers.len(), 1.0);
         }
-        Ok(IrlsSummary {
-            f,
-            iterations,
-            inlier_count: self.inliers.len(),
-        })
+
+        // 3d: weighted 8-point on the current inliers.
+        let weighted = refit(
+            params.fit,
+            points,
+            self.inliers
+                .iter()
+                .copied()
+                .zip(self.weights.iter().copied()),
+        );
+        let f = match weighted {
+            Ok(f) => f,
+            Err(GeometryError::TooFewWeightedPoints { .. } | GeometryError::Degenerate(_))
+                if params.unit_weight_fallback =>
+            {
+                refit(params.fit, points, self.inliers.iter().map(|&i| (i, 1.0)))?
+            }
+            Err(e) => return Err(e),
+        };
+        if let Some(k) = f.iter().position(|v| !v.is_finite()) {
+            return Err(GeometryError::NonFiniteMatrix {
+                row: k % 3,
+                col: k / 3,
+            });
+        }
+        Ok(f)
+    }
+
+    /// Step 3e: the new inlier set from the residuals of all
+    /// correspondences to `f`, and how much it changed.
+    fn update_inliers(
+        &mut self,
+        points: &Correspondences,
+        f: &Matrix3<f64>,
+        params: &IrlsParams,
+        iteration: usize,
+    ) -> Result<InlierChange, GeometryError> {
+        let thr2 = params.thr_px * params.thr_px;
+        sampson_residuals_signed(f, points, &mut self.residuals_all);
+        // min(thr², 4σ²) is thr² whenever MAD ≥ thr / (2 · 1.4826); the
+        // exact MAD is only needed below that (the margin covers rounding).
+        let mad_limit = params.thr_px / (2.0 * MAD_TO_SIGMA) * (1.0 + 1e-12);
+        let bound = match mad_below(&self.residuals_all, &mut self.keys, mad_limit) {
+            Some(mad) => {
+                let sigma_all = MAD_TO_SIGMA * mad;
+                if sigma_all.is_finite() && sigma_all > 0.0 {
+                    thr2.min(4.0 * sigma_all * sigma_all)
+                } else {
+                    thr2
+                }
+            }
+            None => thr2,
+        };
+        let mut change = InlierChange::default();
+        for (inlier, &r) in self.mask.iter_mut().zip(&self.residuals_all) {
+            let new = r * r <= bound;
+            change.changed += usize::from(new != *inlier);
+            change.union += usize::from(new || *inlier);
+            *inlier = new;
+        }
+        self.collect_inliers();
+        if self.inliers.len() < MIN_POINTS {
+            return Err(GeometryError::TooFewInliers {
+                got: self.inliers.len(),
+                needed: MIN_POINTS,
+                iteration,
+            });
+        }
+        Ok(change)
     }
 
     /// [`run`](Self::run), returning the inlier mask as an owned
@@ -534,6 +568,15 @@ fn checked_initial(f: &Matrix3<f64>) -> Result<Matrix3<f64>, GeometryError> {
         return Err(GeometryError::ZeroMatrix);
     }
     Ok(*f)
+}
+
+/// How much one IRLS iteration changed the inlier set (step 3f).
+#[derive(Debug, Default, Clone, Copy)]
+struct InlierChange {
+    /// Correspondences whose inlier flag flipped.
+    changed: usize,
+    /// Correspondences that are inliers before or after.
+    union: usize,
 }
 
 #[cfg(test)]

@@ -229,10 +229,24 @@ pub(crate) fn symmetric_eigenvalues(a: &[[f64; 9]; 9]) -> Option<[f64; 9]> {
     let half = exponent / 2;
     let (down1, down2) = (2f64.powi(-half), 2f64.powi(half - exponent));
     let (up1, up2) = (2f64.powi(half), 2f64.powi(exponent - half));
-    let mut m = a.map(|row| row.map(|v| v * down1 * down2));
+    let scaled = a.map(|row| row.map(|v| v * down1 * down2));
+    let (mut d, mut e) = tridiagonalize(scaled);
+    implicit_ql(&mut d, &mut e)?;
+    if d.iter().all(|v| v.is_finite()) {
+        Some(d.map(|v| v * up1 * up2))
+    } else {
+        None
+    }
+}
+
+/// Householder reduction of the symmetric `m` to tridiagonal form: the
+/// diagonal `d` and the sub-diagonal `e` (`e[i]` couples `d[i]` and
+/// `d[i + 1]`, `e[8] = 0`). For column k, m[k+1.., k] is reflected onto a
+/// multiple of e1.
+fn tridiagonalize(mut m: [[f64; 9]; 9]) -> ([f64; 9], [f64; 9]) {
+    const N: usize = 9;
     let mut d = [0.0; N];
     let mut e = [0.0; N];
-    // Householder: for column k, reflect m[k+1.., k] onto a multiple of e1.
     for k in 0..N - 2 {
         let mut v = [0.0; N];
         let mut norm2 = 0.0;
@@ -279,6 +293,14 @@ pub(crate) fn symmetric_eigenvalues(a: &[[f64; 9]; 9]) -> Option<[f64; 9]> {
     e[N - 2] = m[N - 1][N - 2];
     e[N - 1] = 0.0;
 
+    (d, e)
+}
+
+/// The implicit QL iteration with Wilkinson-type shifts on a tridiagonal
+/// matrix (diagonal `d`, sub-diagonal `e`), leaving the eigenvalues in
+/// `d`; `None` when an eigenvalue needs more than 60 iterations.
+fn implicit_ql(d: &mut [f64; 9], e: &mut [f64; 9]) -> Option<()> {
+    const N: usize = 9;
     // Implicit QL: e[i] couples d[i] and d[i + 1]. An off-diagonal entry is
     // negligible relative to its neighbours or to the whole matrix (the
     // Householder step already limits the accuracy to ε‖A‖, and chasing a
@@ -339,11 +361,7 @@ pub(crate) fn symmetric_eigenvalues(a: &[[f64; 9]; 9]) -> Option<[f64; 9]> {
             e[m_end] = 0.0;
         }
     }
-    if d.iter().all(|v| v.is_finite()) {
-        Some(d.map(|v| v * up1 * up2))
-    } else {
-        None
-    }
+    Some(())
 }
 
 /// Lower Cholesky factor of `a − σI`, or `None` when a pivot is not positive.
