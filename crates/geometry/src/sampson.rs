@@ -159,6 +159,47 @@ pub fn sampson_distances_squared(f: &Matrix3<f64>, points: &Correspondences, out
     }
 }
 
+/// The correspondences within `thr2` px² of `F` (squared Sampson distance,
+/// Eq. 23, computed exactly as [`sampson_distance_squared`]): their indices,
+/// increasing, written into `out` (cleared first). The consensus set of
+/// RANSAC-style hypothesis scoring.
+///
+/// Gives up as soon as fewer than `at_least` correspondences can still be
+/// within the bound, returning `false` (`out` then holds a partial set);
+/// `at_least = 0` never gives up.
+///
+/// ```
+/// use geometry::{sampson_consensus, Correspondences};
+/// use nalgebra::Matrix3;
+/// let f = Matrix3::new(0.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0);
+/// let c = Correspondences::new(&[[0.0, 0.0], [5.0, 1.0]], &[[3.0, 0.0], [9.0, 3.0]]).unwrap();
+/// let mut inliers = Vec::new();
+/// assert!(sampson_consensus(&f, &c, 1.0, 0, &mut inliers));
+/// assert_eq!(inliers, [0]);
+/// assert!(!sampson_consensus(&f, &c, 1.0, 2, &mut inliers));
+/// ```
+pub fn sampson_consensus(
+    f: &Matrix3<f64>,
+    points: &Correspondences,
+    thr2: f64,
+    at_least: usize,
+    out: &mut Vec<usize>,
+) -> bool {
+    out.clear();
+    let f = rescale_power_of_two(f);
+    let n = points.len();
+    for i in 0..n {
+        if out.len() + (n - i) < at_least {
+            return false;
+        }
+        let (e, g1, g2) = epipolar_terms(&f, points.point1(i), points.point2(i));
+        if ratio(e, e * e, g1 + g2) <= thr2 {
+            out.push(i);
+        }
+    }
+    out.len() >= at_least
+}
+
 /// Signed Sampson residuals `r_i = e_i / sqrt(a_i² + b_i² + c_i² + d_i²)`
 /// (square root of Eq. 23, with the sign of `e_i`) of every correspondence to
 /// one `F`, written into `out`; `r_i²` is the squared Sampson distance.

@@ -4,9 +4,9 @@
 mod common;
 
 use geometry::{
-    frob_distance, sampson_distance, sampson_distance_signed, sampson_distance_squared,
-    sampson_distances_squared, sampson_residuals_signed, symmetric_epipolar_distance,
-    Correspondences,
+    frob_distance, sampson_consensus, sampson_distance, sampson_distance_signed,
+    sampson_distance_squared, sampson_distances_squared, sampson_residuals_signed,
+    symmetric_epipolar_distance, Correspondences,
 };
 use nalgebra::{Matrix3, Vector3};
 use proptest::prelude::*;
@@ -86,6 +86,28 @@ proptest! {
             prop_assert!(close(squared[i], expected), "{}: {} vs {}", i, squared[i], expected);
             prop_assert!(close(signed[i].abs(), expected.sqrt()));
             prop_assert!(close(signed[i], sampson_distance_signed(&g, p1[i], p2[i])));
+        }
+    }
+
+    #[test]
+    fn consensus_equals_filtering_the_single_point_distances(
+        f in matrix(), k in factor(), thr in 0.0..400.0f64, at_least in 0usize..40,
+        pts in prop::collection::vec((pixel(), pixel()), 0..40),
+    ) {
+        let (p1, p2): (Vec<_>, Vec<_>) = pts.into_iter().unzip();
+        let c = Correspondences::new(&p1, &p2).unwrap();
+        let g = f * k;
+        let naive: Vec<usize> = (0..p1.len())
+            .filter(|&i| sampson_distance_squared(&g, p1[i], p2[i]) <= thr)
+            .collect();
+        let mut all = vec![99];
+        prop_assert!(sampson_consensus(&g, &c, thr, 0, &mut all));
+        prop_assert_eq!(&all, &naive);
+        let mut part = Vec::new();
+        let reached = sampson_consensus(&g, &c, thr, at_least, &mut part);
+        prop_assert_eq!(reached, naive.len() >= at_least);
+        if reached {
+            prop_assert_eq!(&part, &naive);
         }
     }
 }

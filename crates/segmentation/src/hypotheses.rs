@@ -1,7 +1,7 @@
 //! Steps 1–3 of Algorithm 1: minimal samples, their fits (8-point, or
 //! another minimal solver) and the IRLS-Tukey refinement of each.
 
-use crate::minimal::{candidates, choose, consensus};
+use crate::minimal::{candidates, choose};
 use crate::{minimal_sample, EightPoint, Matches, MinimalSolver, Params, SegmentationError};
 use geometry::{eight_point_normalized, eight_point_plain, Correspondences, IrlsWorkspace};
 use nalgebra::Matrix3;
@@ -145,9 +145,11 @@ fn solve_minimal_samples(
             }
             chosen
                 .into_iter()
-                .map(|f| {
-                    let start = consensus(points, &f, params.thr_px);
-                    Some(SampleFit { start, f })
+                .map(|c| {
+                    Some(SampleFit {
+                        start: c.consensus,
+                        f: c.f,
+                    })
                 })
                 .collect()
         })

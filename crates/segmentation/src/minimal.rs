@@ -3,9 +3,7 @@
 //! choice among them, and the matches refinement starts from.
 
 use crate::{MinimalSolutions, MinimalSolver};
-use geometry::{
-    five_point, sampson_distance_squared, seven_point, six_point_focal, Correspondences,
-};
+use geometry::{five_point, sampson_consensus, seven_point, six_point_focal, Correspondences};
 use nalgebra::{Matrix3, Vector3};
 
 /// The fundamental matrices (centred pixel coordinates) of one minimal
@@ -49,35 +47,47 @@ fn essential_candidates(subset: &Correspondences, focal: f64) -> Vec<Matrix3<f64
         .collect()
 }
 
-/// The indices of the matches within `thr_px` of `f` (Sampson distance,
-/// Eq. 23), increasing.
-pub(crate) fn consensus(points: &Correspondences, f: &Matrix3<f64>, thr_px: f64) -> Vec<usize> {
-    let thr2 = thr_px * thr_px;
-    (0..points.len())
-        .filter(|&i| sampson_distance_squared(f, points.point1(i), points.point2(i)) <= thr2)
-        .collect()
+/// A chosen solution and its consensus set: the matches within `thr_px`
+/// (Sampson distance, Eq. 23), increasing, where its refinement starts.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Chosen {
+    pub f: Matrix3<f64>,
+    pub consensus: Vec<usize>,
 }
 
-/// The candidates that become hypotheses: all of them, or the one with the
-/// largest consensus (the first on ties).
+/// The candidates that become hypotheses, each with its consensus set: all
+/// of them, or the one with the largest consensus (the first on ties). A
+/// candidate is abandoned as soon as it can no longer beat the best so far.
 pub(crate) fn choose(
     choice: MinimalSolutions,
     points: &Correspondences,
     candidates: Vec<Matrix3<f64>>,
     thr_px: f64,
-) -> Vec<Matrix3<f64>> {
+) -> Vec<Chosen> {
+    let thr2 = thr_px * thr_px;
     match choice {
-        MinimalSolutions::All => candidates,
+        MinimalSolutions::All => candidates
+            .into_iter()
+            .map(|f| {
+                let mut consensus = Vec::new();
+                sampson_consensus(&f, points, thr2, 0, &mut consensus);
+                Chosen { f, consensus }
+            })
+            .collect(),
         MinimalSolutions::Best => {
-            let mut best: Option<(usize, Matrix3<f64>)> = None;
+            let mut best: Option<Chosen> = None;
+            let mut scratch = Vec::new();
             for f in candidates {
-                let support = consensus(points, &f, thr_px).len();
-                match &best {
-                    Some((s, _)) if *s >= support => {}
-                    _ => best = Some((support, f)),
+                let to_beat = best.as_ref().map_or(0, |b| b.consensus.len() + 1);
+                if sampson_consensus(&f, points, thr2, to_beat, &mut scratch) {
+                    let previous = best.replace(Chosen {
+                        f,
+                        consensus: std::mem::take(&mut scratch),
+                    });
+                    scratch = previous.map(|b| b.consensus).unwrap_or_default();
                 }
             }
-            best.map(|(_, f)| f).into_iter().collect()
+            best.into_iter().collect()
         }
     }
 }
@@ -134,13 +144,35 @@ mod tests {
             // The best solution is the one every match agrees with.
             let best = choose(MinimalSolutions::Best, &points, all.clone(), 0.5);
             assert_eq!(best.len(), 1);
-            assert!(same_up_to_scale(&best[0], &truth), "{solver:?}");
-            assert_eq!(consensus(&points, &best[0], 0.5).len(), points.len());
-            assert_eq!(
-                choose(MinimalSolutions::All, &points, all.clone(), 0.5),
-                all
-            );
+            assert!(same_up_to_scale(&best[0].f, &truth), "{solver:?}");
+            assert_eq!(best[0].consensus, (0..points.len()).collect::<Vec<_>>());
+            let every = choose(MinimalSolutions::All, &points, all.clone(), 0.5);
+            assert_eq!(every.iter().map(|c| c.f).collect::<Vec<_>>(), all);
         }
+    }
+
+    #[test]
+    fn best_is_the_first_candidate_of_largest_consensus() {
+        let (points, truth) = rigid_scene(900.0);
+        let worse = truth.component_mul(&Matrix3::new(1.0, 1.1, 0.9, 1.2, 1.0, 0.8, 1.0, 1.3, 1.0));
+        let naive_support = |f: &Matrix3<f64>| {
+            (0..points.len())
+                .filter(|&i| {
+                    geometry::sampson_distance_squared(f, points.point1(i), points.point2(i)) <= 4.0
+                })
+                .count()
+        };
+        assert!(naive_support(&worse) < naive_support(&truth));
+        let scaled = truth * -3.0;
+        let chosen = choose(
+            MinimalSolutions::Best,
+            &points,
+            vec![worse, scaled, truth],
+            2.0,
+        );
+        assert_eq!(chosen.len(), 1);
+        assert_eq!(chosen[0].f, scaled, "ties keep the first");
+        assert_eq!(chosen[0].consensus.len(), naive_support(&truth));
     }
 
     #[test]
