@@ -61,6 +61,11 @@ class Segmentation:
     @property
     def consensus_fallback(self) -> bool: ...
     @property
+    def focal_verdict(self) -> Optional[Literal["plausible", "implausible", "none"]]:
+        """f_peak against 0.3-3 x the focal prior; None without a focal stage."""
+    @property
+    def focal_abstained(self) -> bool: ...
+    @property
     def consensus(self) -> Optional[Dict[str, Any]]: ...
     @property
     def hypothesis_status(self) -> List[str]: ...
@@ -84,7 +89,7 @@ def segment(
     principal_point: Optional[Tuple[float, float]] = None,
     focal_prior: Optional[float] = None,
     seed: int = 12345,
-    method: Literal["semical", "baseline"] = "semical",
+    method: Literal["baseline", "semical"] = "baseline",
     num_samples: int = 3000,
     mss_size: int = 8,
     thr_px: float = 2.5,
@@ -97,7 +102,7 @@ def segment(
     irls_polish: bool = False,
     refine: bool = True,
     eight_point: Literal["normalized", "plain"] = "normalized",
-    minimal_solver: Literal["eight-point", "seven-point", "five-point", "six-point-focal"] = "eight-point",
+    minimal_solver: Literal["five-point", "eight-point", "seven-point", "six-point-focal"] = "five-point",
     minimal_solutions: Literal["best", "all"] = "best",
     focal_solver: Literal["kocur", "bougnoux"] = "kocur",
     weight_sets: _WeightSets = "adelaidermf",
@@ -105,10 +110,13 @@ def segment(
     focal_failure: Literal["report", "prior"] = "report",
     truncate_focals: bool = False,
     local_test: Literal["algorithm1", "reference-code"] = "algorithm1",
+    implausible_focal: Literal["filter", "abstain"] = "filter",
     linkage: Literal["t-linkage", "j-linkage"] = "t-linkage",
     min_cluster_size: int = 8,
 ) -> Segmentation:
-    """Segments matches into rigid motions (semi-calibrated T-Linkage)."""
+    """Segments matches into rigid motions (T-Linkage of five-point
+    hypotheses at the focal prior; the thesis: method="semical",
+    minimal_solver="eight-point")."""
 
 def default_params() -> Dict[str, Any]:
     """The default keyword parameters of ``segment``."""

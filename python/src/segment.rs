@@ -11,9 +11,12 @@ use segmentation::{Matches, Params, StageTimings};
 use std::fmt::Write as _;
 
 /// Segments point matches between two images of one camera into rigid
-/// motions: semi-calibrated T-Linkage (Algorithm 1 of "Two-View Motion
-/// Segmentation with Semi-Calibrated Cameras via Hypothesis Filtering"), or
-/// the uncalibrated T-Linkage baseline with ``method="baseline"``.
+/// motions by T-Linkage. The default draws its hypotheses as essential
+/// matrices from five-point samples at the focal prior (the one camera
+/// enters the hypotheses; the best configuration measured). The thesis's
+/// semi-calibrated T-Linkage (Algorithm 1 of "Two-View Motion Segmentation
+/// with Semi-Calibrated Cameras via Hypothesis Filtering") is
+/// ``method="semical", minimal_solver="eight-point"``.
 ///
 /// Parameters
 /// ----------
@@ -33,7 +36,7 @@ use std::fmt::Write as _;
 ///     Any key of the ``[pipeline]`` table, with the same name and default
 ///     (``sctl.default_params()`` lists them):
 ///
-///     - method = "semical"          ("semical" or "baseline")
+///     - method = "baseline"         ("baseline": no focal filter, or "semical")
 ///     - num_samples = 3000          (M, minimal samples drawn)
 ///     - mss_size = 8                (points per minimal sample)
 ///     - thr_px = 2.5                (inlier threshold, px; tau = thr_px**2)
@@ -46,7 +49,7 @@ use std::fmt::Write as _;
 ///     - irls_polish = False         (LM polish of each sample's F first)
 ///     - refine = True               (IRLS-Tukey refinement of each sample's F)
 ///     - eight_point = "normalized"  ("normalized" or "plain")
-///     - minimal_solver = "eight-point"  ("eight-point", "seven-point", "five-point" or "six-point-focal")
+///     - minimal_solver = "five-point"  ("five-point", "eight-point", "seven-point" or "six-point-focal")
 ///     - minimal_solutions = "best"  ("best": most matches within thr_px, or "all")
 ///     - focal_solver = "kocur"      ("kocur" or "bougnoux")
 ///     - weight_sets = "adelaidermf" ("adelaidermf", "hopef" or [[w_f1, w_pp1, w_f2, w_pp2], ...])
@@ -54,6 +57,7 @@ use std::fmt::Write as _;
 ///     - focal_failure = "report"    ("report" or "prior")
 ///     - truncate_focals = False     (integer focals, as the reference code)
 ///     - local_test = "algorithm1"   ("algorithm1" or "reference-code")
+///     - implausible_focal = "filter"  (f_peak outside 0.3-3 x focal_prior: "filter" or "abstain")
 ///     - linkage = "t-linkage"       ("t-linkage" or "j-linkage")
 ///     - min_cluster_size = 8        (smaller clusters become outliers)
 ///
@@ -61,7 +65,7 @@ use std::fmt::Write as _;
 /// -------
 /// Segmentation
 ///     ``labels`` (int32 array, 0, 1, ... per motion, -1 for outliers),
-///     ``f_peak``, ``motions``, ``outliers``, the hypothesis counts, the
+///     ``f_peak`` and ``focal_verdict``, ``motions``, ``outliers``, the hypothesis counts, the
 ///     stage ``timings`` and the ``clusters`` with their F.
 ///
 /// Raises
@@ -223,6 +227,24 @@ impl Segmentation {
     #[getter]
     fn consensus_fallback(&self) -> bool {
         self.result.consensus_fallback
+    }
+
+    /// The focal consensus against the focal prior: "plausible" (f_peak
+    /// within 0.3-3 x the prior), "implausible", "none" (no hypothesis
+    /// passed the local test), or None when no focal was estimated.
+    #[getter]
+    fn focal_verdict(&self) -> Option<&'static str> {
+        match self.result.focal_verdict {
+            segmentation::FocalVerdict::NotEstimated => None,
+            v => Some(v.name()),
+        }
+    }
+
+    /// True when the focal filter abstained on an implausible consensus
+    /// (``implausible_focal="abstain"``) and kept every refined hypothesis.
+    #[getter]
+    fn focal_abstained(&self) -> bool {
+        self.result.focal_abstained
     }
 
     /// The KDE focal consensus (Eq. 37) as a dict (f_peak, from_median,

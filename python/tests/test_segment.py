@@ -12,12 +12,14 @@ from conftest import write_csv
 
 SEED = 2024
 # Small M keeps the comparison fast; the variants exercise keys of every type.
+THESIS = {"method": "semical", "minimal_solver": "eight-point"}
 VARIANTS = [
     {},
-    {"method": "baseline"},
-    {"tau_range": 0.25, "weight_sets": "hopef", "max_iters": 120, "focal_failure": "prior",
+    THESIS,
+    {**THESIS, "tau_range": 0.25, "weight_sets": "hopef", "max_iters": 120, "focal_failure": "prior",
      "truncate_focals": True, "local_test": "reference-code", "eight_point": "plain"},
-    {"linkage": "j-linkage", "thr_px": 3, "min_cluster_size": 10, "irls_iters": 3,
+    {"method": "semical", "implausible_focal": "abstain", "linkage": "j-linkage", "thr_px": 3,
+     "min_cluster_size": 10, "irls_iters": 3,
      "weight_sets": [[1e-3, 1.0, 1e-3, 1.0], [1e-4, 2.0, 1e-4, 2.0]]},
 ]
 
@@ -66,7 +68,7 @@ def test_labels_equal_the_command_line(cli, synthetic, tmp_path, variant):
 
 def test_result_is_consistent(synthetic):
     scene = sctl.load_hopef(synthetic[0])
-    seg = sctl.segment(scene["x1"], scene["x2"], scene["image_size"], num_samples=300)
+    seg = sctl.segment(scene["x1"], scene["x2"], scene["image_size"], num_samples=300, **THESIS)
     labels = seg.labels
     assert len(seg) == len(labels) == len(scene["x1"])
     assert seg.outliers == int(np.sum(labels == -1))
@@ -82,7 +84,9 @@ def test_result_is_consistent(synthetic):
     assert seg.consensus["f_peak"] == seg.f_peak
     assert seg.principal_point == ((scene["image_size"][0] - 1) / 2, (scene["image_size"][1] - 1) / 2)
     assert seg.focal_prior == max(scene["image_size"])
-    assert seg.params == {**sctl.default_params(), "num_samples": 300}
+    assert seg.params == {**sctl.default_params(), "num_samples": 300, **THESIS}
+    assert seg.focal_verdict in ("plausible", "implausible", "none")
+    assert not seg.focal_abstained
     assert f"motions={seg.motions}" in repr(seg) and f"outliers={seg.outliers}" in repr(seg)
 
 
@@ -129,7 +133,7 @@ def test_docstring_lists_every_key_with_its_default():
     ({"weight_sets": [[1, 2, 3]]}, "weight_sets"),
     ({"weight_sets": "kitti"}, "weight_sets"),
     ({"seed": -1}, "seed"),
-    ({"focal_solver": "external"}, "external"),
+    ({"focal_solver": "external", "method": "semical"}, "external"),
 ])
 def test_bad_parameters_raise_value_error_naming_the_key(synthetic, kwargs, key):
     scene = sctl.load_hopef(synthetic[0])
@@ -175,3 +179,12 @@ def test_the_gil_is_released_while_segmenting(synthetic):
     thread.join()
     # Holding the GIL for the whole call would leave a few hundred spins at most.
     assert spins > 10_000
+
+
+def test_default_is_five_point_without_a_focal_stage(synthetic):
+    scene = sctl.load_hopef(synthetic[0])
+    seg = sctl.segment(scene["x1"], scene["x2"], scene["image_size"], num_samples=300)
+    defaults = sctl.default_params()
+    assert (defaults["method"], defaults["minimal_solver"]) == ("baseline", "five-point")
+    assert seg.f_peak is None and seg.consensus is None and seg.focal_verdict is None
+    assert seg.kept == seg.refined

@@ -125,10 +125,13 @@ pub fn scene_result(
         Some(gt) => Some(ClusteringMetrics::compute(&segmentation.labels, gt)?),
         None => None,
     };
-    let status = match (&segmentation.degenerate, segmentation.consensus_fallback) {
-        (Some(reason), _) => reason.clone(),
-        (None, true) => "ok (focal filter kept all)".to_string(),
-        (None, false) => "ok".to_string(),
+    let status = match &segmentation.degenerate {
+        Some(reason) => reason.clone(),
+        None if segmentation.consensus_fallback => "ok (focal filter kept all)".to_string(),
+        None if segmentation.focal_abstained => {
+            "ok (focal filter abstained: f_peak implausible)".to_string()
+        }
+        None => "ok".to_string(),
     };
     let mut row = SceneResult {
         scene: scene.name.clone(),
@@ -138,6 +141,7 @@ pub fn scene_result(
         gt_outliers: scene.labels.as_ref().map(|_| scene.num_outliers()),
         motions: segmentation.clusters.len(),
         outliers: segmentation.labels.iter().filter(|&&l| l < 0).count(),
+        focal_verdict: segmentation.focal_verdict.name().to_string(),
         status,
         ..SceneResult::default()
     };
@@ -295,6 +299,8 @@ fn all_outliers(n: usize) -> Segmentation {
         hypotheses: Vec::new(),
         consensus: None,
         consensus_fallback: false,
+        focal_verdict: Default::default(),
+        focal_abstained: false,
         clusters: Vec::new(),
         clusters_before_filter: 0,
         timings: StageTimings::default(),

@@ -104,7 +104,7 @@ mod tests {
         let scene = datasets::synthetic::generate_scene(&params, 3, 2, "q").unwrap();
         let config = PipelineConfig {
             num_samples: 300,
-            ..Default::default()
+            ..PipelineConfig::from_params(segmentation::Params::thesis())
         };
         let q = filter_quality(&scene, &config).unwrap().unwrap();
         assert_eq!(q.kept + q.discarded, q.refined);

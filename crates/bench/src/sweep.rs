@@ -243,7 +243,7 @@ mod tests {
     fn method_not_swept_comes_first() {
         let p = plan("[sweep]\nnum_samples = [100, 200]\n").unwrap();
         assert_eq!(p.columns, ["method", "num_samples"]);
-        assert_eq!(p.combinations[1].values, ["semical", "200"]);
+        assert_eq!(p.combinations[1].values, ["baseline", "200"]);
         assert_eq!(p.combinations[1].pipeline.num_samples, 200);
     }
 

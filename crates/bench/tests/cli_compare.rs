@@ -15,8 +15,10 @@ fn write_run(dir: &Path, rows: &[(&str, &str, f64)]) {
         let mut cells = vec![String::new(); PER_SCENE_FIELDS.len()];
         cells[0] = scene.to_string();
         cells[1] = "100".into();
-        cells[2] = format!("{me:.6}");
-        cells[3] = format!("{:.6}", 1.0 - me);
+        let column = |name: &str| PER_SCENE_FIELDS.iter().position(|f| *f == name).unwrap();
+        cells[column("me")] = format!("{me:.6}");
+        cells[column("me_all")] = format!("{:.6}", me / 2.0);
+        cells[column("acc")] = format!("{:.6}", 1.0 - me);
         text += &format!("{method},{}\n", cells.join(","));
     }
     std::fs::write(dir.join("per_scene.csv"), text).unwrap();
@@ -78,6 +80,16 @@ fn compares_two_runs_on_their_common_scenes() {
         .assert()
         .success()
         .stdout(predicate::str::contains("A better on 5, B better on 1"));
+    sctl()
+        .arg("compare")
+        .arg(&a)
+        .arg(&b)
+        .args(["--metric", "me_all"])
+        .assert()
+        .success()
+        .stdout(predicate::str::contains(
+            "mean A 9.5833 %, mean B 16.0833 %",
+        ));
 }
 
 #[test]

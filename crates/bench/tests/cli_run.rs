@@ -80,13 +80,13 @@ fn writes_every_file_with_the_documented_columns() {
     let per_scene = std::fs::read_to_string(dir.join("per_scene.csv")).unwrap();
     let header = per_scene.lines().next().unwrap();
     assert!(
-        header.starts_with("method,scene,n,me,acc,fnr,pur,ari,nmi,frob,"),
+        header.starts_with("method,scene,n,me,me_all,acc,fnr,pur,ari,nmi,frob,"),
         "{header}"
     );
     assert_eq!(per_scene.lines().count(), 1 + 6);
     let summary = std::fs::read_to_string(dir.join("summary.csv")).unwrap();
     assert!(
-        summary.starts_with("method,scenes,me_mean,me_std,acc_mean,acc_std,"),
+        summary.starts_with("method,scenes,me_mean,me_std,me_all_mean,me_all_std,acc_mean,"),
         "{summary}"
     );
     let wilcoxon = std::fs::read_to_string(dir.join("wilcoxon.csv")).unwrap();

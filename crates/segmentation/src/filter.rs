@@ -1,8 +1,25 @@
 //! Steps 5–6 of Algorithm 1: the local test (Eq. 36), the KDE focal
-//! consensus and its band (Eq. 37).
+//! consensus and its band (Eq. 37), and the plausibility of the consensus.
 
-use crate::{Hypothesis, HypothesisStatus, LocalTest, Params};
+use crate::{FocalVerdict, Hypothesis, HypothesisStatus, ImplausibleFocal, LocalTest, Params};
 use focal::{ConsensusParams, FocalConsensus};
+
+/// The plausible scene focals relative to the focal prior `max(W, H)`:
+/// f_peak outside `[0.3, 3] × prior` is implausible (a horizontal field of
+/// view above 118° or below 19° for the usual prior). Such consensus values
+/// come from motions whose focal F cannot measure (results/README.md,
+/// `sctl gt-focals`), not from the camera.
+pub const PLAUSIBLE_FOCAL_RANGE: [f64; 2] = [0.3, 3.0];
+
+/// The verdict on a focal consensus for a scene of focal prior `prior`.
+pub fn focal_verdict(consensus: Option<&FocalConsensus>, prior: f64) -> FocalVerdict {
+    let [low, high] = PLAUSIBLE_FOCAL_RANGE;
+    match consensus {
+        None => FocalVerdict::NoConsensus,
+        Some(c) if c.f_peak >= low * prior && c.f_peak <= high * prior => FocalVerdict::Plausible,
+        Some(_) => FocalVerdict::Implausible,
+    }
+}
 
 /// What the focal filter decided besides each hypothesis's status.
 #[derive(Debug, Clone, PartialEq)]
@@ -14,6 +31,11 @@ pub struct FilterOutcome {
     pub fallback: bool,
     /// Hypotheses that passed the local test (Eq. 36).
     pub local_ok: usize,
+    /// Whether the consensus is plausible ([`focal_verdict`]).
+    pub verdict: FocalVerdict,
+    /// True when the filter abstained on an implausible consensus
+    /// ([`ImplausibleFocal::Abstain`]) and kept every refined hypothesis.
+    pub abstained: bool,
 }
 
 /// `f_avg = (f1 + f2) / 2` (Eq. 36).
@@ -32,10 +54,14 @@ fn f_avg((f1, f2): (f64, f64)) -> f64 {
 ///   `f_avg`; the pool's hypotheses with `|f_avg − f_peak| ≤ τ_range f_peak`
 ///   are kept.
 /// - When nothing is kept, every refined hypothesis is (the fallback).
+/// - With [`ImplausibleFocal::Abstain`], an f_peak outside
+///   [`PLAUSIBLE_FOCAL_RANGE`] times `focal_prior` keeps every refined
+///   hypothesis too (the baseline's hypotheses).
 pub fn focal_filter(
     hypotheses: &mut [Hypothesis],
     refined: &[usize],
     params: &Params,
+    focal_prior: f64,
 ) -> FilterOutcome {
     let reference = params.local_test == LocalTest::ReferenceCode;
     let mut local_ok = Vec::new();
@@ -61,8 +87,11 @@ pub fn focal_filter(
         .filter_map(|&j| hypotheses[j].focals.map(f_avg))
         .collect();
     let consensus = focal::focal_consensus(&values, &ConsensusParams::default());
+    let verdict = focal_verdict(consensus.as_ref(), focal_prior);
+    let abstained = verdict == FocalVerdict::Implausible
+        && params.implausible_focal == ImplausibleFocal::Abstain;
     let mut kept = 0;
-    if let Some(c) = &consensus {
+    if let Some(c) = consensus.as_ref().filter(|_| !abstained) {
         for &j in &pool {
             let Some(focals) = hypotheses[j].focals else {
                 continue;
@@ -76,8 +105,8 @@ pub fn focal_filter(
             };
         }
     }
-    let fallback = kept == 0;
-    if fallback {
+    let fallback = kept == 0 && !abstained;
+    if kept == 0 {
         for &j in refined {
             hypotheses[j].status = HypothesisStatus::Kept;
         }
@@ -86,6 +115,8 @@ pub fn focal_filter(
         consensus,
         fallback,
         local_ok: local_ok.len(),
+        verdict,
+        abstained,
     }
 }
 
@@ -122,7 +153,7 @@ mod tests {
             ..Default::default()
         };
         let mut a = hs.clone();
-        let out = focal_filter(&mut a, &refined, &params);
+        let out = focal_filter(&mut a, &refined, &params, 1000.0);
         assert!(!out.fallback);
         assert_eq!(out.local_ok, 5);
         let f_peak = out.consensus.unwrap().f_peak;
@@ -146,15 +177,71 @@ mod tests {
             local_test: LocalTest::ReferenceCode,
             ..params.clone()
         };
-        let out = focal_filter(&mut hs, &refined, &reference);
+        let out = focal_filter(&mut hs, &refined, &reference, 1000.0);
         assert_eq!(out.local_ok, 5);
         assert_eq!(hs[6].status, Kept);
         assert_eq!(hs[7].status, LocalTestFailed);
         assert_eq!(hs[0].status, FocalFailed);
         // Nothing passes: everything refined is kept.
         let mut none = vec![hyp(None), hyp(Some((500.0, 1500.0)))];
-        let out = focal_filter(&mut none, &[0, 1], &params);
+        let out = focal_filter(&mut none, &[0, 1], &params, 1000.0);
         assert!(out.consensus.is_none() && out.fallback && out.local_ok == 0);
+        assert_eq!(out.verdict, FocalVerdict::NoConsensus);
         assert!(none.iter().all(|h| h.status == Kept));
+    }
+
+    #[test]
+    fn an_implausible_consensus_filters_or_abstains() {
+        // A consensus at 10 px for a prior of 1000 px: outside [300, 3000].
+        let focals = [(10.0, 10.1), (10.1, 10.0), (10.0, 10.0), (900.0, 905.0)];
+        let fresh = || -> Vec<Hypothesis> { focals.iter().map(|&f| hyp(Some(f))).collect() };
+        let refined = [0, 1, 2, 3];
+        let filter = Params::default();
+        let mut hs = fresh();
+        let out = focal_filter(&mut hs, &refined, &filter, 1000.0);
+        assert_eq!(out.verdict, FocalVerdict::Implausible);
+        assert!(!out.abstained && !out.fallback);
+        assert_eq!(hs[3].status, OutsideBand);
+        // The same consensus is plausible for a prior of 30 px.
+        let out = focal_filter(&mut fresh(), &refined, &filter, 30.0);
+        assert_eq!(out.verdict, FocalVerdict::Plausible);
+        let abstain = Params {
+            implausible_focal: ImplausibleFocal::Abstain,
+            ..Params::default()
+        };
+        let mut hs = fresh();
+        let out = focal_filter(&mut hs, &refined, &abstain, 1000.0);
+        assert!(out.abstained && !out.fallback);
+        assert!(hs.iter().all(|h| h.status == Kept));
+        // Abstention needs an implausible consensus.
+        let mut hs = fresh();
+        let out = focal_filter(&mut hs, &refined, &abstain, 30.0);
+        assert!(!out.abstained);
+        assert_eq!(hs[3].status, OutsideBand);
+    }
+
+    #[test]
+    fn verdict_bounds_are_inclusive() {
+        let at = |f_peak: f64| FocalConsensus {
+            f_peak,
+            ..focal::focal_consensus(&[100.0, 101.0, 99.0], &ConsensusParams::default()).unwrap()
+        };
+        assert_eq!(
+            focal_verdict(Some(&at(300.0)), 1000.0),
+            FocalVerdict::Plausible
+        );
+        assert_eq!(
+            focal_verdict(Some(&at(3000.0)), 1000.0),
+            FocalVerdict::Plausible
+        );
+        assert_eq!(
+            focal_verdict(Some(&at(299.0)), 1000.0),
+            FocalVerdict::Implausible
+        );
+        assert_eq!(
+            focal_verdict(Some(&at(3001.0)), 1000.0),
+            FocalVerdict::Implausible
+        );
+        assert_eq!(focal_verdict(None, 1000.0), FocalVerdict::NoConsensus);
     }
 }

@@ -39,7 +39,7 @@ mod segment;
 mod variants;
 
 pub use error::SegmentationError;
-pub use filter::{focal_filter, FilterOutcome};
+pub use filter::{focal_filter, focal_verdict, FilterOutcome, PLAUSIBLE_FOCAL_RANGE};
 pub use focal::FocalConsensus;
 pub use focals::{
     estimate_focals, estimate_hypothesis_focals, focals_as_used, FocalAnswer, HypothesisFocals,
@@ -47,12 +47,13 @@ pub use focals::{
 pub use hypotheses::{centred_points, generate_hypotheses, GeneratedHypotheses};
 pub use input::{image_centre, Matches};
 pub use params::{
-    EightPoint, FocalKey, FocalSolver, HypothesisKey, IrlsFit, Linkage, LocalTest, Method,
-    MinimalSolutions, MinimalSolver, OnFailure, ParamError, Params, WeightPreset, WeightSets,
-    PARAM_KEYS,
+    EightPoint, FocalKey, FocalSolver, HypothesisKey, ImplausibleFocal, IrlsFit, Linkage,
+    LocalTest, Method, MinimalSolutions, MinimalSolver, OnFailure, ParamError, Params,
+    WeightPreset, WeightSets, PARAM_KEYS,
 };
 pub use result::{
-    ClusterModel, Hypothesis, HypothesisCounts, HypothesisStatus, Segmentation, StageTimings,
+    ClusterModel, FocalVerdict, Hypothesis, HypothesisCounts, HypothesisStatus, Segmentation,
+    StageTimings,
 };
 pub use sampling::{hypothesis_rng, minimal_sample, splitmix64};
 pub use segment::{fit_cluster, segment, segment_with};

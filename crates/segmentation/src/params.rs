@@ -14,7 +14,7 @@ use geometry::IrlsParams;
 use thiserror::Error;
 
 pub use crate::variants::{
-    EightPoint, FocalSolver, LocalTest, Method, MinimalSolutions, MinimalSolver,
+    EightPoint, FocalSolver, ImplausibleFocal, LocalTest, Method, MinimalSolutions, MinimalSolver,
 };
 
 /// A named list of multi-start weight sets for the robust focal solver.
@@ -68,14 +68,25 @@ impl WeightSets {
 /// Every parameter of Algorithm 1 (method.md "Parameters" and the switches
 /// between the thesis text and the reference code).
 ///
-/// The defaults are the thesis's Table 1 values and the text's choices; the
+/// The defaults are the best configuration measured (results/README.md,
+/// "Minimal solvers"): hypotheses from five-point samples as essential
+/// matrices at the focal prior (the one camera enters the hypotheses), no
+/// focal filter, and the thesis's Table 1 values for everything else.
+/// [`Params::thesis`] gives the thesis text's semi-calibrated method; the
 /// reference implementation's AdelaideRMF parameters are
-/// `num_samples = 5000, thr_px = 4.5, tau_diff = 0.15, tau_range = 0.25`.
+/// `num_samples = 5000, thr_px = 4.5, tau_diff = 0.15, tau_range = 0.25`
+/// with its variants (`eight_point = "plain"`, `irls_fit = "plain"`,
+/// `focal_failure = "prior"`, `truncate_focals = true`,
+/// `local_test = "reference-code"`, …).
 ///
 /// ```
-/// let p = segmentation::Params { num_samples: 500, ..Default::default() };
+/// use segmentation::{Method, MinimalSolver, Params};
+/// let p = Params { num_samples: 500, ..Default::default() };
 /// assert_eq!(p.thr_px, 2.5); // Table 1
+/// assert_eq!((p.method, p.minimal_solver), (Method::Baseline, MinimalSolver::FivePoint));
 /// assert!(p.validate().is_ok());
+/// let thesis = Params::thesis();
+/// assert_eq!((thesis.method, thesis.minimal_solver), (Method::Semical, MinimalSolver::EightPoint));
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(
@@ -85,7 +96,8 @@ impl WeightSets {
 )]
 pub struct Params {
     /// `semical` (focal filtering, steps 4–6) or `baseline` (every refined
-    /// hypothesis kept). Default `semical`.
+    /// hypothesis kept). Default `baseline` (with the five-point
+    /// hypotheses; the thesis: `semical`).
     pub method: Method,
     /// M, the number of minimal sample sets drawn (step 1). Table 1: 3000.
     pub num_samples: usize,
@@ -132,7 +144,8 @@ pub struct Params {
     /// `six-point-focal` (shared unknown focal). The last three draw their
     /// own sample size; `mss_size` applies to `eight-point`. Refinement
     /// (step 3) starts from the matches within `thr_px` of the chosen
-    /// solution instead of the sample. Default `eight-point`.
+    /// solution instead of the sample. Default `five-point` (the thesis:
+    /// `eight-point`).
     pub minimal_solver: MinimalSolver,
     /// Which solutions of a minimal sample become hypotheses: `best` (most
     /// matches within `thr_px`) or `all`. Ignored by `eight-point`, which
@@ -156,6 +169,10 @@ pub struct Params {
     /// Local test variant (step 5): `algorithm1` or `reference-code`.
     /// Default `algorithm1`.
     pub local_test: LocalTest,
+    /// When f_peak lies outside [`crate::PLAUSIBLE_FOCAL_RANGE`] times the
+    /// focal prior: `filter` all the same (the thesis) or `abstain` (keep
+    /// every refined hypothesis: the baseline's labels). Default `filter`.
+    pub implausible_focal: ImplausibleFocal,
     /// Clustering (step 8): `t-linkage` or `j-linkage`. Default `t-linkage`.
     pub linkage: Linkage,
     /// Clusters with fewer points become outliers (step 9). Default 8.
@@ -169,6 +186,20 @@ pub struct Params {
 
 impl Default for Params {
     fn default() -> Self {
+        Self {
+            minimal_solver: MinimalSolver::FivePoint,
+            method: Method::Baseline,
+            ..Self::thesis()
+        }
+    }
+}
+
+impl Params {
+    /// The thesis text's semi-calibrated T-Linkage: Algorithm 1 with the
+    /// Table 1 parameters, the normalised 8-point, the robust focal solver
+    /// and the focal filter (`method = "semical"`,
+    /// `minimal_solver = "eight-point"`).
+    pub fn thesis() -> Self {
         Self {
             method: Method::Semical,
             num_samples: 3000,
@@ -191,6 +222,7 @@ impl Default for Params {
             focal_failure: OnFailure::Report,
             truncate_focals: false,
             local_test: LocalTest::Algorithm1,
+            implausible_focal: ImplausibleFocal::Filter,
             linkage: Linkage::TLinkage,
             min_cluster_size: 8,
             seed: 12345,
@@ -199,7 +231,7 @@ impl Default for Params {
 }
 
 /// The keys of [`Params`] in declaration order.
-pub const PARAM_KEYS: [&str; 24] = [
+pub const PARAM_KEYS: [&str; 25] = [
     "method",
     "num_samples",
     "mss_size",
@@ -221,6 +253,7 @@ pub const PARAM_KEYS: [&str; 24] = [
     "focal_failure",
     "truncate_focals",
     "local_test",
+    "implausible_focal",
     "linkage",
     "min_cluster_size",
     "seed",

@@ -36,6 +36,34 @@ impl HypothesisStatus {
     }
 }
 
+/// Whether the focal consensus of a segmentation is plausible
+/// ([`crate::focal_verdict`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum FocalVerdict {
+    /// No focal was estimated (`method = "baseline"`).
+    #[default]
+    NotEstimated,
+    /// Focals were estimated but none passed the local test: no consensus.
+    NoConsensus,
+    /// f_peak lies within [`crate::PLAUSIBLE_FOCAL_RANGE`] times the prior.
+    Plausible,
+    /// f_peak lies outside [`crate::PLAUSIBLE_FOCAL_RANGE`] times the prior.
+    Implausible,
+}
+
+impl FocalVerdict {
+    /// A short lowercase name: `""` (not estimated), `none`, `plausible`,
+    /// `implausible`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::NotEstimated => "",
+            Self::NoConsensus => "none",
+            Self::Plausible => "plausible",
+            Self::Implausible => "implausible",
+        }
+    }
+}
+
 /// One hypothesis of a segmentation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Hypothesis {
@@ -140,6 +168,11 @@ pub struct Segmentation {
     /// True when the focal filter kept every refined hypothesis because
     /// nothing passed the local test or nothing fell in the band (step 6).
     pub consensus_fallback: bool,
+    /// Whether the focal consensus is plausible for the focal prior.
+    pub focal_verdict: FocalVerdict,
+    /// True when the filter abstained on an implausible consensus
+    /// (`implausible_focal = "abstain"`) and kept every refined hypothesis.
+    pub focal_abstained: bool,
     /// The clusters kept after the size filter, by label.
     pub clusters: Vec<ClusterModel>,
     /// Clusters before the size filter (step 9).

@@ -2,7 +2,7 @@
 //! hypotheses and focals computed beforehand.
 
 use crate::{
-    estimate_hypothesis_focals, focal_filter, generate_hypotheses, ClusterModel,
+    estimate_hypothesis_focals, focal_filter, generate_hypotheses, ClusterModel, FocalVerdict,
     GeneratedHypotheses, Hypothesis, HypothesisCounts, HypothesisFocals, HypothesisStatus, Matches,
     Method, MinimalSolutions, MinimalSolver, Params, Segmentation, SegmentationError, StageTimings,
 };
@@ -80,6 +80,8 @@ pub fn segment_with(
     // Steps 4–6: focal lengths, local test, consensus and band.
     let mut consensus = None;
     let mut consensus_fallback = false;
+    let mut focal_verdict = FocalVerdict::NotEstimated;
+    let mut focal_abstained = false;
     if let Some(focals) = focals.filter(|_| params.method == Method::Semical) {
         for &j in &refined {
             hypotheses[j].focals = focals.focals[j];
@@ -88,9 +90,10 @@ pub fn segment_with(
         }
         timings.focal = focals.seconds;
         let t = Instant::now();
-        let outcome = focal_filter(&mut hypotheses, &refined, params);
+        let outcome = focal_filter(&mut hypotheses, &refined, params, matches.focal_prior);
         (consensus, consensus_fallback, counts.local_ok) =
             (outcome.consensus, outcome.fallback, outcome.local_ok);
+        (focal_verdict, focal_abstained) = (outcome.verdict, outcome.abstained);
         timings.consensus = t.elapsed().as_secs_f64();
     }
     // Steps 1–4 ran before this call (or were shared with another one).
@@ -107,6 +110,8 @@ pub fn segment_with(
         hypotheses,
         consensus,
         consensus_fallback,
+        focal_verdict,
+        focal_abstained,
         clusters: Vec::new(),
         clusters_before_filter: 0,
         timings,

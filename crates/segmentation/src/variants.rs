@@ -1,6 +1,6 @@
 //! The named switches of [`crate::Params`]: which method, which 8-point,
 //! which minimal solver and which of its solutions, which focal solver,
-//! which local test.
+//! which local test, what an implausible focal consensus does.
 
 /// Which hypotheses reach the clustering (Algorithm 1 steps 4–6).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -118,4 +118,22 @@ pub enum LocalTest {
     /// The reference code: only `f_avg <= 0` discards; the `|f1 - f2|` test
     /// only decides which focals feed the KDE, and the band decides for all.
     ReferenceCode,
+}
+
+/// What the focal filter (steps 5–6) does when the scene's focal consensus
+/// is implausible: f_peak outside [`crate::PLAUSIBLE_FOCAL_RANGE`] times the
+/// focal prior (results/README.md: a consensus of degenerate tiny focals
+/// wins the KDE on scenes whose focal F cannot measure).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
+pub enum ImplausibleFocal {
+    /// Filter by the band around f_peak all the same (the thesis).
+    Filter,
+    /// Abstain: keep every refined hypothesis, so the labels are the
+    /// baseline's bit for bit.
+    Abstain,
 }

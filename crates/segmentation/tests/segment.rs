@@ -16,11 +16,12 @@ fn quick_scene(category: u32, index: u32) -> Scene {
         .scene
 }
 
+/// The thesis's pipeline (8-point hypotheses) with `method` and M 300.
 fn config(method: Method) -> Params {
     Params {
         method,
         num_samples: 300,
-        ..Params::default()
+        ..Params::thesis()
     }
 }
 
@@ -289,4 +290,80 @@ fn minimal_solvers_segment_a_synthetic_scene_and_all_solutions_add_hypotheses() 
         assert!(seg_all.counts.generated > 300, "{solver:?}");
         assert_eq!(seg_all.hypotheses.len(), seg_all.counts.generated);
     }
+}
+
+#[test]
+fn the_default_segments_synthetic_scenes_with_five_point_hypotheses() {
+    let params = Params {
+        num_samples: 300,
+        ..Params::default()
+    };
+    for (category, index) in [(1, 900), (2, 900), (2, 901)] {
+        let scene = quick_scene(category, index);
+        let seg = segment(&scene, &params).unwrap();
+        assert!(seg.consensus.is_none() && seg.counts.kept == seg.counts.refined);
+        assert_eq!(seg.focal_verdict, segmentation::FocalVerdict::NotEstimated);
+        assert!(
+            me(&scene, &seg) < 0.05,
+            "{category}/{index}: ME {}",
+            me(&scene, &seg)
+        );
+    }
+}
+
+#[test]
+fn an_abstaining_filter_gives_the_baselines_labels_bit_for_bit() {
+    use segmentation::{
+        generate_hypotheses, segment_with, FocalVerdict, HypothesisFocals, ImplausibleFocal,
+    };
+    let scene = quick_scene(2, 900);
+    let m = matches(&scene);
+    let semical = Params {
+        focal_solver: FocalSolver::External,
+        ..config(Method::Semical)
+    };
+    let hypotheses = generate_hypotheses(&m, &semical).unwrap();
+    // Every hypothesis answers a tiny focal (12 px for a prior of 1024 px),
+    // except every tenth, which answers the prior: the consensus is
+    // implausible and the filter would keep only the tiny ones.
+    let answers: Vec<Option<(f64, f64)>> = (0..hypotheses.models.len())
+        .map(|j| {
+            Some(if j % 10 == 0 {
+                (1024.0, 1024.0)
+            } else {
+                (12.0, 12.0)
+            })
+        })
+        .collect();
+    let focals =
+        HypothesisFocals::from_answers(&answers, &hypotheses, &semical, m.focal_prior).unwrap();
+    let filtered = segment_with(&m, &semical, &hypotheses, Some(&focals)).unwrap();
+    assert_eq!(filtered.focal_verdict, FocalVerdict::Implausible);
+    assert!(!filtered.focal_abstained);
+    assert!(filtered.counts.kept < filtered.counts.refined);
+
+    let abstain = Params {
+        implausible_focal: ImplausibleFocal::Abstain,
+        ..semical.clone()
+    };
+    let abstained = segment_with(&m, &abstain, &hypotheses, Some(&focals)).unwrap();
+    assert!(abstained.focal_abstained);
+    assert_eq!(abstained.counts.kept, abstained.counts.refined);
+    let baseline = Params {
+        method: Method::Baseline,
+        ..abstain.clone()
+    };
+    let reference = segment_with(&m, &baseline, &hypotheses, None).unwrap();
+    assert_eq!(abstained.labels, reference.labels);
+    assert_eq!(abstained.clusters, reference.clusters);
+    // The same through `segment` with the baseline's own hypotheses.
+    let fresh = segment(
+        &scene,
+        &Params {
+            focal_solver: FocalSolver::Kocur,
+            ..baseline
+        },
+    )
+    .unwrap();
+    assert_eq!(fresh.labels, reference.labels);
 }

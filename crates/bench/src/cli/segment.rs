@@ -13,6 +13,7 @@ use crate::plots::{clusters_over_images, PlotFormat};
 use anyhow::{bail, Context, Result};
 use datasets::Scene;
 use image::{ImageFormat, ImageReader, RgbImage};
+use segmentation::{FocalVerdict, MinimalSolver, Params};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -113,7 +114,7 @@ pub fn run(args: Args) -> Result<()> {
         let _ = writeln!(s, "{l}");
         s
     });
-    let mut summary = summary_text(&scene, &segmentation, &result);
+    let mut summary = summary_text(&scene, &segmentation, &result, &config.params());
     if let Some(plot) = &args.plot {
         let title = format!(
             "{}: {} motion(s), {} outliers",
@@ -146,7 +147,12 @@ pub fn run(args: Args) -> Result<()> {
 
 /// The summary printed after a segmentation: what was found, f_peak, the
 /// metrics against the file's labels and any note.
-fn summary_text(scene: &Scene, segmentation: &Segmentation, result: &SceneResult) -> String {
+fn summary_text(
+    scene: &Scene,
+    segmentation: &Segmentation,
+    result: &SceneResult,
+    params: &Params,
+) -> String {
     let mut summary = format!(
         "{}: {} matches, {} motion(s) found, {} outliers; hypotheses kept {} of {} generated ({} refined)",
         scene.name,
@@ -160,23 +166,20 @@ fn summary_text(scene: &Scene, segmentation: &Segmentation, result: &SceneResult
     for c in &segmentation.clusters {
         let _ = write!(summary, "\n  motion {}: {} matches", c.label, c.size);
     }
-    match result.f_peak {
-        Some(f) => {
-            let _ = write!(
-                summary,
-                "\n  f_peak {f:.1} px (focal prior {:.0} px)",
-                scene.focal_prior()
-            );
-        }
-        None => summary.push_str("\n  f_peak: none (baseline)"),
-    }
-    if let (Some(me), Some(fnr), Some(pur), Some(ari), Some(nmi)) =
-        (result.me, result.fnr, result.pur, result.ari, result.nmi)
-    {
+    summary.push_str(&focal_line(scene, segmentation, result, params));
+    if let (Some(me), Some(me_all), Some(fnr), Some(pur), Some(ari), Some(nmi)) = (
+        result.me,
+        result.me_all,
+        result.fnr,
+        result.pur,
+        result.ari,
+        result.nmi,
+    ) {
         let _ = write!(
             summary,
-            "\n  against the file's labels: ME {:.2} %, FNR {:.2} %, PUR {:.2} %, ARI {:.4}, NMI {:.4}",
+            "\n  against the file's labels: ME {:.2} % (all points: {:.2} %), FNR {:.2} %, PUR {:.2} %, ARI {:.4}, NMI {:.4}",
             100.0 * me,
+            100.0 * me_all,
             100.0 * fnr,
             100.0 * pur,
             ari,
@@ -187,4 +190,36 @@ fn summary_text(scene: &Scene, segmentation: &Segmentation, result: &SceneResult
         let _ = write!(summary, "\n  note: {}", result.status);
     }
     summary
+}
+
+/// The summary's line on the focal: f_peak and its verdict for semical, the
+/// focal the five-point hypotheses were computed at otherwise. An
+/// implausible or absent consensus is said in one line.
+fn focal_line(
+    scene: &Scene,
+    segmentation: &Segmentation,
+    result: &SceneResult,
+    params: &Params,
+) -> String {
+    let prior = scene.focal_prior();
+    let [low, high] = segmentation::PLAUSIBLE_FOCAL_RANGE;
+    match (result.f_peak, segmentation.focal_verdict) {
+        (Some(f), FocalVerdict::Implausible) => format!(
+            "\n  f_peak {f:.1} px is implausible (outside {low}-{high} x the focal prior {prior:.0} px): {}",
+            if segmentation.focal_abstained {
+                "the focal filter abstained, every hypothesis was kept (the baseline's labels)"
+            } else {
+                "the focal filter used it all the same (implausible_focal = \"abstain\" keeps every hypothesis)"
+            }
+        ),
+        (Some(f), _) => format!("\n  f_peak {f:.1} px (focal prior {prior:.0} px)"),
+        (None, FocalVerdict::NoConsensus) => {
+            "\n  no focal consensus: no hypothesis passed the local test, every hypothesis was kept"
+                .to_string()
+        }
+        (None, _) if params.minimal_solver == MinimalSolver::FivePoint => format!(
+            "\n  no focal filter (baseline); five-point hypotheses at the focal prior {prior:.0} px"
+        ),
+        (None, _) => "\n  f_peak: none (baseline)".to_string(),
+    }
 }

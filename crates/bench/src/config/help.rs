@@ -22,8 +22,11 @@ EXPERIMENT FILE (TOML)
   width = 640                  csv: image size for every file (else each
   height = 480                 file's sidecar <file>.toml)
 
-  [pipeline]                   (defaults: thesis Table 1 and text)
-  method = \"semical\"           semical | baseline
+  [pipeline]                   (defaults: the best measured configuration, 5-point
+                               hypotheses at the focal prior without the focal
+                               filter; the thesis text: method = \"semical\",
+                               minimal_solver = \"eight-point\"; Table 1 values)
+  method = \"baseline\"          baseline (no focal filter) | semical (Algorithm 1)
   num_samples = 3000           M, minimal samples per scene
   mss_size = 8                 points per minimal sample
   thr_px = 2.5                 inlier threshold (px); tau = thr_px^2 (Eq. 38)
@@ -36,8 +39,8 @@ EXPERIMENT FILE (TOML)
   irls_polish = false          LM polish of each sample's F first (reference code)
   refine = true                false: raw minimal-sample F (ablation)
   eight_point = \"normalized\"   normalized | plain
-  minimal_solver = \"eight-point\"   eight-point | seven-point | five-point (E at the
-                               focal prior) | six-point-focal (shared unknown f)
+  minimal_solver = \"five-point\"   five-point (E at the focal prior) | eight-point
+                               | seven-point | six-point-focal (shared unknown f)
   minimal_solutions = \"best\"   best (most matches within thr_px) | all
   focal_solver = \"kocur\"       kocur | bougnoux | external (read from focal_file)
   focal_file = \"f{seed}.csv\"   focal_solver = \"external\": CSV of scene,hypothesis,f1,f2
@@ -46,6 +49,8 @@ EXPERIMENT FILE (TOML)
   focal_failure = \"report\"     report | prior (reference code)
   truncate_focals = false      truncate f1, f2 to integers (reference code)
   local_test = \"algorithm1\"    algorithm1 | reference-code
+  implausible_focal = \"filter\"   f_peak outside 0.3-3 x prior: filter | abstain
+                               (keep every hypothesis: the baseline's labels)
   linkage = \"t-linkage\"        t-linkage | j-linkage
   min_cluster_size = 8         smaller clusters become outliers
   seed = 12345                 sampling seed

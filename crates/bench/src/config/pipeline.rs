@@ -3,8 +3,8 @@
 
 use super::{parse_toml, ConfigError};
 use segmentation::{
-    EightPoint, FocalSolver, IrlsFit, Linkage, LocalTest, Method, MinimalSolutions, MinimalSolver,
-    OnFailure, ParamError, Params, WeightSets,
+    EightPoint, FocalSolver, ImplausibleFocal, IrlsFit, Linkage, LocalTest, Method,
+    MinimalSolutions, MinimalSolver, OnFailure, ParamError, Params, WeightSets,
 };
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -52,6 +52,7 @@ pub struct PipelineConfig {
     pub focal_failure: OnFailure,
     pub truncate_focals: bool,
     pub local_test: LocalTest,
+    pub implausible_focal: ImplausibleFocal,
     pub linkage: Linkage,
     pub min_cluster_size: usize,
     /// The run's seed; scene `s` is segmented with the seed
@@ -67,7 +68,7 @@ impl Default for PipelineConfig {
 
 /// The keys of [`PipelineConfig`] in declaration order: the order of the
 /// swept-parameter columns in every output file.
-pub const PIPELINE_KEYS: [&str; 25] = [
+pub const PIPELINE_KEYS: [&str; 26] = [
     "method",
     "num_samples",
     "mss_size",
@@ -90,6 +91,7 @@ pub const PIPELINE_KEYS: [&str; 25] = [
     "focal_failure",
     "truncate_focals",
     "local_test",
+    "implausible_focal",
     "linkage",
     "min_cluster_size",
     "seed",
@@ -121,6 +123,7 @@ impl PipelineConfig {
             focal_failure: p.focal_failure,
             truncate_focals: p.truncate_focals,
             local_test: p.local_test,
+            implausible_focal: p.implausible_focal,
             linkage: p.linkage,
             min_cluster_size: p.min_cluster_size,
             seed: p.seed,
@@ -151,6 +154,7 @@ impl PipelineConfig {
             focal_failure: self.focal_failure,
             truncate_focals: self.truncate_focals,
             local_test: self.local_test,
+            implausible_focal: self.implausible_focal,
             linkage: self.linkage,
             min_cluster_size: self.min_cluster_size,
             seed: self.seed,

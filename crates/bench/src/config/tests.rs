@@ -47,7 +47,9 @@ fn defaults_are_table_1() {
         ),
         (3000, 8, 2.5, 0.05, 0.20, 5)
     );
-    assert_eq!(p.method, Method::Semical);
+    // The best measured configuration: five-point hypotheses, no filter.
+    assert_eq!(p.method, Method::Baseline);
+    assert_eq!(p.minimal_solver, segmentation::MinimalSolver::FivePoint);
     assert_eq!(c.compare.against, default_against());
     assert!(c.plots.enabled && !c.plots.per_scene);
 }

@@ -21,9 +21,14 @@ pub struct SceneResult {
     pub scene: String,
     /// Number of correspondences N.
     pub n: usize,
-    /// Misclassification error (method.md "Metrics").
+    /// Misclassification error (method.md "Metrics"; the thesis's:
+    /// ground-truth outliers excluded, a predicted outlier wrong).
     #[serde(with = "decimals_6")]
     pub me: Option<f64>,
+    /// Misclassification error over all points, outliers a class of their
+    /// own (the multi-model fitting literature's).
+    #[serde(with = "decimals_6")]
+    pub me_all: Option<f64>,
     /// Accuracy.
     #[serde(with = "decimals_6")]
     pub acc: Option<f64>,
@@ -73,8 +78,13 @@ pub struct SceneResult {
     /// `|f_peak − f_true| / f_true`, when both are known.
     #[serde(with = "decimals_6")]
     pub f_peak_error: Option<f64>,
+    /// The focal consensus against the focal prior: `plausible` (f_peak
+    /// within 0.3–3 × prior), `implausible`, `none` (no hypothesis passed
+    /// the local test); empty when no focal was estimated.
+    pub focal_verdict: String,
     /// `ok` (`ok (focal filter kept all)` when nothing passed the focal
-    /// filter) or why every point is an outlier.
+    /// filter, `ok (focal filter abstained: f_peak implausible)`) or why
+    /// every point is an outlier.
     pub status: String,
 }
 
@@ -98,6 +108,7 @@ impl SceneResult {
     /// Sets the label metrics (method.md "Metrics").
     pub fn set_metrics(&mut self, m: &ClusteringMetrics) {
         self.me = Some(m.me);
+        self.me_all = Some(m.me_all);
         self.acc = Some(m.acc);
         self.fnr = Some(m.fnr);
         self.pur = Some(m.pur);
@@ -254,14 +265,16 @@ mod tests {
         let cells = row().cells();
         assert_eq!(cells.len(), fields.len());
         assert_eq!(cells[0], "a,b");
-        assert_eq!(cells[7], "0.666667");
-        assert_eq!(cells[8], "");
-        assert_eq!(cells[10], "3");
-        assert_eq!(cells[17], "7");
-        assert_eq!(cells[18], "0");
-        assert_eq!(cells[19], "1000.000");
-        assert_eq!(cells[21], "0.250000");
-        assert_eq!(cells[22], "ok");
+        assert_eq!(cells[3], "0.150000");
+        assert_eq!(cells[8], "0.666667");
+        assert_eq!(cells[9], "");
+        assert_eq!(cells[11], "3");
+        assert_eq!(cells[18], "7");
+        assert_eq!(cells[19], "0");
+        assert_eq!(cells[20], "1000.000");
+        assert_eq!(cells[22], "0.250000");
+        assert_eq!(cells[23], "");
+        assert_eq!(cells[24], "ok");
     }
 
     #[test]

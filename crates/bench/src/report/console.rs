@@ -2,7 +2,7 @@
 //! the mean per-stage timings read from `timings.csv`.
 
 use super::markdown::pm;
-use super::stats::{mean, RunValues};
+use super::stats::{mean, metric_index, RunValues};
 use super::tables::{cell, short_label, WilcoxonRow};
 use crate::output::{CsvTable, StageTimings};
 use crate::sweep::SweepPlan;
@@ -81,6 +81,7 @@ pub fn console_summary(
         "combination",
         "scenes",
         "ME %",
+        "ME all %",
         "FNR %",
         "kept/generated",
         "s/scene",
@@ -99,8 +100,9 @@ pub fn console_summary(
         rows.push(vec![
             short_label(plan, c),
             values.scenes[c].len().to_string(),
-            pm(values.stats(c, 0), 2),
-            pm(values.stats(c, 2), 2),
+            pm(values.stats(c, metric_index("me")), 2),
+            pm(values.stats(c, metric_index("me_all")), 2),
+            pm(values.stats(c, metric_index("fnr")), 2),
             format!(
                 "{}/{}",
                 cell(mean(&values.kept[c]), 0),
@@ -116,6 +118,11 @@ pub fn console_summary(
         ]);
     }
     let mut out = aligned(&rows);
+    for combo in &plan.combinations {
+        if let Some(note) = values.focal_verdicts[combo.index].note() {
+            let _ = writeln!(out, "{}: {note}", short_label(plan, combo.index));
+        }
+    }
     let mut stages: Vec<Vec<String>> = vec![std::iter::once("mean s/scene by stage")
         .chain(StageTimings::NAMES)
         .map(String::from)

@@ -62,7 +62,9 @@ fn write_metrics(md: &mut String, plan: &SweepPlan, values: &RunValues) {
     let _ = writeln!(md, "## Metrics (mean ± std over scenes)\n");
     let _ = writeln!(
         md,
-        "ME, ACC, FNR, PUR, ARI and NMI in percent, FROB (Eq. 45) as a distance; std with ddof 0.\n"
+        "ME, ME_ALL, ACC, FNR, PUR, ARI and NMI in percent, FROB (Eq. 45) as a distance; std with ddof 0. \
+         ME is the thesis's (ground-truth outliers excluded, a predicted outlier wrong), ME_ALL the \
+         multi-model fitting literature's (all points, outliers a class of their own).\n"
     );
     let mut header: Vec<String> = plan.columns.clone();
     header.push("scenes".into());
@@ -82,6 +84,17 @@ fn write_metrics(md: &mut String, plan: &SweepPlan, values: &RunValues) {
             cell(mean(&values.generated[c]), 0)
         ));
         table_row(md, &cells);
+    }
+    let notes: Vec<String> = plan
+        .combinations
+        .iter()
+        .filter_map(|combo| {
+            let note = values.focal_verdicts[combo.index].note()?;
+            Some(format!("- {}: {note}.", combo.values.join(", ")))
+        })
+        .collect();
+    if !notes.is_empty() {
+        let _ = writeln!(md, "\n{}", notes.join("\n"));
     }
 }
 

@@ -7,10 +7,10 @@ use anyhow::{Context, Result};
 use std::path::Path;
 
 /// The metrics summarised per combination, in column order.
-pub const SUMMARY_METRICS: [&str; 7] = ["me", "acc", "fnr", "pur", "ari", "nmi", "frob"];
+pub const SUMMARY_METRICS: [&str; 8] = ["me", "me_all", "acc", "fnr", "pur", "ari", "nmi", "frob"];
 
 /// The metrics tested with Wilcoxon (errors: lower is better).
-pub const TESTED_METRICS: [&str; 2] = ["me", "fnr"];
+pub const TESTED_METRICS: [&str; 3] = ["me", "me_all", "fnr"];
 
 /// Scale from the per-scene value to the summary: percent for the label
 /// metrics (as the thesis reports them), 1 for FROB (a distance).
@@ -24,7 +24,7 @@ pub fn summary_scale(metric: &str) -> f64 {
 
 /// True for the metrics where lower is better.
 pub fn lower_is_better(metric: &str) -> bool {
-    matches!(metric, "me" | "fnr" | "frob")
+    matches!(metric, "me" | "me_all" | "fnr" | "frob")
 }
 
 /// Mean and population standard deviation (ddof 0) of a sample.
@@ -69,12 +69,58 @@ pub struct RunValues {
     /// For each combination: `f_peak_error` (`|f_peak − f_true| / f_true`)
     /// of every scene where both are known.
     pub focal_errors: Vec<Vec<f64>>,
+    /// For each combination: scenes whose focal consensus was judged
+    /// (`focal_verdict` not empty) and, of those, the ones not plausible
+    /// (`implausible`, or `none`: no consensus).
+    pub focal_verdicts: Vec<FocalVerdictCounts>,
+}
+
+/// How many scenes of a combination had a focal consensus judged, and how
+/// many of them were implausible or had none.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct FocalVerdictCounts {
+    /// Scenes with a focal stage (`focal_verdict` not empty).
+    pub judged: usize,
+    /// f_peak outside 0.3–3 × the focal prior.
+    pub implausible: usize,
+    /// No hypothesis passed the local test.
+    pub none: usize,
+}
+
+impl FocalVerdictCounts {
+    /// The one-line note for a combination whose consensus was not plausible
+    /// on some scene; None when it was on all (or none was judged).
+    pub fn note(&self) -> Option<String> {
+        if self.implausible + self.none == 0 {
+            return None;
+        }
+        let mut parts = Vec::new();
+        if self.implausible > 0 {
+            parts.push(format!(
+                "implausible (f_peak outside 0.3-3 x the focal prior) on {} of {} scenes",
+                self.implausible, self.judged
+            ));
+        }
+        if self.none > 0 {
+            parts.push(format!("absent on {} of {} scenes", self.none, self.judged));
+        }
+        Some(format!("focal consensus {}", parts.join(", ")))
+    }
+}
+
+/// The index of summary metric `name` in [`SUMMARY_METRICS`].
+pub fn metric_index(name: &str) -> usize {
+    SUMMARY_METRICS
+        .iter()
+        .position(|m| *m == name)
+        .unwrap_or_else(|| unreachable!("`{name}` is not a summary metric"))
 }
 
 /// The value of summary metric `name` (one of [`SUMMARY_METRICS`]) in a row.
 fn metric(row: &SceneResult, name: &str) -> Option<f64> {
     match name {
         "me" => row.me,
+        "me_all" => row.me_all,
         "acc" => row.acc,
         "fnr" => row.fnr,
         "pur" => row.pur,
@@ -97,6 +143,7 @@ impl RunValues {
             generated: vec![Vec::new(); c],
             kept: vec![Vec::new(); c],
             focal_errors: vec![Vec::new(); c],
+            focal_verdicts: vec![FocalVerdictCounts::default(); c],
         };
         for (r, row) in table.rows.iter().enumerate() {
             let combo = plan.find(&row[..k]).with_context(|| {
@@ -118,6 +165,10 @@ impl RunValues {
             if let Some(e) = result.f_peak_error {
                 out.focal_errors[combo].push(e);
             }
+            let verdicts = &mut out.focal_verdicts[combo];
+            verdicts.judged += usize::from(!result.focal_verdict.is_empty());
+            verdicts.implausible += usize::from(result.focal_verdict == "implausible");
+            verdicts.none += usize::from(result.focal_verdict == "none");
             out.scenes[combo].push(result.scene);
         }
         Ok(out)

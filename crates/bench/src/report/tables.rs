@@ -11,10 +11,12 @@ pub(super) fn cell(v: Option<f64>, decimals: usize) -> String {
 }
 
 /// `summary.csv`: per combination, the parameter columns, `scenes`, then
-/// `<metric>_mean, <metric>_std` for ME, ACC, FNR, PUR, ARI, NMI (percent, 4
+/// `<metric>_mean, <metric>_std` for ME, ME_ALL, ACC, FNR, PUR, ARI, NMI (percent, 4
 /// decimals) and FROB (as is, 6 decimals), `frob_scenes` (scenes where FROB
-/// is defined), and the mean hypothesis counts `hypotheses_generated_mean`,
-/// `hypotheses_kept_mean` (2 decimals).
+/// is defined), the mean hypothesis counts `hypotheses_generated_mean`,
+/// `hypotheses_kept_mean` (2 decimals), and the scenes whose focal
+/// consensus was judged, implausible and absent (`focal_judged_scenes`,
+/// `focal_implausible_scenes`, `focal_none_scenes`).
 pub fn summary_table(plan: &SweepPlan, values: &RunValues) -> CsvTable {
     let mut header = plan.columns.clone();
     header.push("scenes".into());
@@ -27,6 +29,9 @@ pub fn summary_table(plan: &SweepPlan, values: &RunValues) -> CsvTable {
             "frob_scenes",
             "hypotheses_generated_mean",
             "hypotheses_kept_mean",
+            "focal_judged_scenes",
+            "focal_implausible_scenes",
+            "focal_none_scenes",
         ]
         .iter()
         .map(|s| s.to_string()),
@@ -49,6 +54,8 @@ pub fn summary_table(plan: &SweepPlan, values: &RunValues) -> CsvTable {
         );
         row.push(cell(mean(&values.generated[c]), 2));
         row.push(cell(mean(&values.kept[c]), 2));
+        let verdicts = values.focal_verdicts[c];
+        row.extend([verdicts.judged, verdicts.implausible, verdicts.none].map(|v| v.to_string()));
         rows.push(row);
     }
     CsvTable { header, rows }

@@ -26,7 +26,7 @@ fn zero_counts(header: &[String]) -> Vec<String> {
         .map(|h| {
             let count = h == "n"
                 || h.starts_with("hypotheses_")
-                || h.starts_with("focal_")
+                || (h.starts_with("focal_") && h != "focal_verdict")
                 || h == "motions"
                 || h == "outliers";
             if count { "0" } else { "" }.to_string()
@@ -44,6 +44,7 @@ fn table(rows: &[(&str, &str, &str, &str)]) -> CsvTable {
             row[1] = scene.to_string();
             for (name, v) in [
                 ("me", *me),
+                ("me_all", *me),
                 ("fnr", *me),
                 ("frob", *frob),
                 ("hypotheses_generated", "10"),
@@ -86,7 +87,7 @@ fn summary_is_in_percent_and_tests_pair_by_scene() {
     assert_eq!(s.rows[1][frob_n], "1");
     let against = crate::config::CompareConfig::default().against;
     let tests = wilcoxon_rows(&p, &values, &against);
-    assert_eq!(tests.len(), 2);
+    assert_eq!(tests.len(), 3);
     assert_eq!(tests[0].combination, 1);
     assert_eq!(tests[0].reference, 0);
     let r = tests[0].result.as_ref().unwrap();

@@ -4,10 +4,11 @@
 
 /// The columns of `per_scene.csv` after the parameter columns, as the
 /// README documents them.
-pub const PER_SCENE_COLUMNS: [&str; 23] = [
+pub const PER_SCENE_COLUMNS: [&str; 25] = [
     "scene",
     "n",
     "me",
+    "me_all",
     "acc",
     "fnr",
     "pur",
@@ -27,5 +28,6 @@ pub const PER_SCENE_COLUMNS: [&str; 23] = [
     "f_peak",
     "f_true",
     "f_peak_error",
+    "focal_verdict",
     "status",
 ];
