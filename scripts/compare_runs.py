@@ -18,7 +18,7 @@ def rows(path):
 def compare(old_dir, new_dir, name, key_cells):
     old, new = rows(old_dir / name), rows(new_dir / name)
     if not old:
-        return [] if not new else [f"{name}: committed file empty"]
+        return ([] if not new else [f"{name}: committed file empty"]), []
     common = [c for c in old[0] if c in new[0]]
     added = [c for c in new[0] if c not in old[0]]
     problems = [f"{name}: column {c} missing" for c in old[0] if c not in new[0]]
