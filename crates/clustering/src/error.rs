@@ -59,4 +59,19 @@ pub enum ClusteringError {
     /// More hypotheses than a continuous preference matrix can index (`u32`).
     #[error("{0} hypotheses: at most 2^32 - 1 hypotheses are supported")]
     TooManyHypotheses(usize),
+    /// The fraction of [`crate::SizeRule::RelativeMin`] is not in `[0, 1]`.
+    #[error("invalid size_rule relative-min = {0}: the fraction of N must lie in [0, 1]")]
+    InvalidRelativeMin(f64),
+    /// The clustering would need more memory than `max_memory_bytes`.
+    #[error("{n_points} points x {n_hypotheses} hypotheses would need about {} MB for the clustering, above max_memory_bytes = {} MB", required.div_ceil(1_000_000), limit / 1_000_000)]
+    MemoryBound {
+        /// Number of points N.
+        n_points: usize,
+        /// Number of hypotheses M.
+        n_hypotheses: usize,
+        /// The estimate of [`crate::required_memory`], bytes.
+        required: u64,
+        /// The bound, bytes.
+        limit: u64,
+    },
 }

@@ -2,8 +2,9 @@
 //! intersection — the ancestor of T-Linkage, on the same heap machinery.
 
 use crate::distance::jaccard_distance;
-use crate::linkage::{agglomerate, AgglomerationState, Candidate, Clustering};
-use crate::BinaryPreferenceMatrix;
+use crate::heap::RUN_CAPACITY;
+use crate::linkage::{agglomerate, labels_from_merges, AgglomerationState, Candidate, Clustering};
+use crate::{BinaryPreferenceMatrix, Merge, SizeRule};
 use std::ops::Range;
 
 /// J-Linkage clustering of a binary preference matrix: agglomerate the
@@ -28,7 +29,17 @@ use std::ops::Range;
 /// assert_eq!(c.merges[0].distance, 0.0);
 /// ```
 pub fn j_linkage(preferences: &BinaryPreferenceMatrix, min_cluster_size: usize) -> Clustering {
-    agglomerate(BinaryState::new(preferences), min_cluster_size)
+    labels_from_merges(
+        preferences.n_points(),
+        merge_sequence(preferences),
+        SizeRule::MinSize,
+        min_cluster_size,
+    )
+}
+
+/// The merges of J-Linkage, before any size filter.
+pub(crate) fn merge_sequence(preferences: &BinaryPreferenceMatrix) -> Vec<Merge> {
+    agglomerate(BinaryState::new(preferences), RUN_CAPACITY)
 }
 
 /// Bit sets of the clusters (point-major, `words` words each) and their sizes.
@@ -113,13 +124,51 @@ impl AgglomerationState for BinaryState {
         }
         self.counts[kept] = popcount(self.row(kept));
         self.counts[removed] = 0;
-        if self.counts[kept] == 0 {
+        self.candidates(kept, active, out);
+    }
+
+    fn candidates(&mut self, cluster: usize, active: &[bool], out: &mut Vec<(u32, Candidate)>) {
+        if self.counts[cluster] == 0 {
             return;
         }
-        for k in (0..self.n).filter(|&k| k != kept && active[k]) {
-            let d = self.distance(kept, k);
+        for k in (0..self.n).filter(|&k| k != cluster && active[k]) {
+            let d = self.distance(cluster, k);
             if d < 1.0 {
                 out.push((k as u32, Candidate { d, exact: true }));
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::reference;
+
+    /// Runs bounded to very few entries give the reference merges.
+    #[test]
+    fn bounded_runs_give_the_reference_result() {
+        let mut seed = 17u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        for case in 0..30 {
+            let (n, m) = (2 + (next() % 60) as usize, 1 + (next() % 100) as usize);
+            let rows: Vec<Vec<bool>> = (0..n)
+                .map(|_| (0..m).map(|_| next() % 4 == 0).collect())
+                .collect();
+            let b = BinaryPreferenceMatrix::from_rows(&rows).unwrap();
+            let expected = reference::j_linkage(&b, 0);
+            for capacity in [1, 2, 5] {
+                let merges = agglomerate(BinaryState::new(&b), capacity);
+                assert_eq!(
+                    labels_from_merges(n, merges, SizeRule::MinSize, 0),
+                    expected,
+                    "case {case}, capacity {capacity}"
+                );
             }
         }
     }

@@ -12,6 +12,11 @@
 //! * [`t_linkage`]: agglomerative clustering, element-wise minimum merge
 //!   (Eq. 40), lazy-deletion min-heap (Section 6.3), stop at `d ≥ 1`;
 //!   clusters smaller than `min_cluster_size` become outliers (label −1).
+//! * [`SizeRule`]: which clusters are kept (step 9) — `min_cluster_size`
+//!   alone, T-Linkage's largest size gap ([`largest_gap_cut`]), or a
+//!   minimum relative to N; [`cluster_with_rule`], [`ClusteringParams::cluster`].
+//! * [`required_memory`]: the memory estimate behind
+//!   [`ClusteringParams::max_memory_bytes`] and [`ClusteringParams::check_memory`].
 //! * [`j_linkage`]: the same with binary preferences `r ≤ τ`, Jaccard
 //!   distance and intersection merge.
 //! * [`reference`](mod@reference): plain O(N³) versions of both, for tests and benchmarks.
@@ -34,10 +39,13 @@
 
 pub mod distance;
 pub mod error;
+mod heap;
 mod jlinkage;
 mod linkage;
+mod memory;
 pub mod preference;
 pub mod reference;
+mod size_rule;
 mod tlinkage;
 
 pub use distance::{
@@ -47,10 +55,12 @@ pub use distance::{
 pub use error::ClusteringError;
 pub use jlinkage::j_linkage;
 pub use linkage::{Clustering, Merge};
+pub use memory::required_memory;
 pub use preference::{
     binary_preference, preference, BinaryPreferenceMatrix, Linkage, PreferenceBuilder,
     PreferenceMatrix, Preferences, PREFERENCE_CUTOFF,
 };
+pub use size_rule::{largest_gap_cut, SizeRule};
 pub use tlinkage::t_linkage;
 
 use serde::{Deserialize, Serialize};
@@ -63,21 +73,39 @@ pub const DEFAULT_MIN_CLUSTER_SIZE: usize = 8;
 /// Serde defaults (a missing field takes its default):
 /// * `linkage = "t-linkage"` — [`Linkage::TLinkage`] (Eq. 38–40); `"j-linkage"`
 ///   selects binary preferences and the Jaccard distance;
-/// * `min_cluster_size = 8` — clusters with fewer points are outliers (step 9).
+/// * `min_cluster_size = 8` — clusters with fewer points are outliers (step 9);
+///   a floor under every `size_rule`;
+/// * `size_rule = "min-size"` — [`SizeRule::MinSize`], `min_cluster_size`
+///   alone; `"largest-gap"` cuts the sorted cluster sizes at their largest
+///   ratio (Magri & Fusiello 2014), `{"relative-min": f}` keeps clusters of
+///   at least `⌈f · N⌉` points;
+/// * `max_memory_bytes = null` — no bound; with a bound,
+///   [`ClusteringParams::check_memory`] and [`ClusteringParams::try_cluster`]
+///   refuse a problem whose [`required_memory`] exceeds it.
 ///
 /// ```
-/// use clustering::{ClusteringParams, Linkage};
+/// use clustering::{ClusteringParams, Linkage, SizeRule};
 /// let p: ClusteringParams = serde_json::from_str(r#"{"linkage": "j-linkage"}"#).unwrap();
 /// assert_eq!(p.linkage, Linkage::JLinkage);
 /// assert_eq!(p.min_cluster_size, 8);
+/// assert_eq!(p.size_rule, SizeRule::MinSize);
+/// let p: ClusteringParams = serde_json::from_str(r#"{"size_rule": {"relative-min": 0.01}}"#).unwrap();
+/// assert_eq!(p.size_rule, SizeRule::RelativeMin(0.01));
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct ClusteringParams {
     /// Which agglomeration to run (default T-Linkage).
     pub linkage: Linkage,
-    /// Clusters with fewer points than this get label −1 (default 8).
+    /// Clusters with fewer points than this get label −1 (default 8); the
+    /// floor of every [`SizeRule`].
     pub min_cluster_size: usize,
+    /// Which clusters are kept (method.md step 9; default
+    /// [`SizeRule::MinSize`], `min_cluster_size` alone).
+    pub size_rule: SizeRule,
+    /// The memory the phase may need, in bytes (default `None`: no bound);
+    /// see [`required_memory`].
+    pub max_memory_bytes: Option<u64>,
 }
 
 impl Default for ClusteringParams {
@@ -85,6 +113,8 @@ impl Default for ClusteringParams {
         Self {
             linkage: Linkage::TLinkage,
             min_cluster_size: DEFAULT_MIN_CLUSTER_SIZE,
+            size_rule: SizeRule::MinSize,
+            max_memory_bytes: None,
         }
     }
 }
@@ -100,18 +130,87 @@ impl ClusteringParams {
         PreferenceBuilder::new(self.linkage, n_points, tau)
     }
 
-    /// Clusters `preferences` with the linkage they were built for and the
-    /// size filter `self.min_cluster_size`.
+    /// Clusters `preferences` with the linkage they were built for, then
+    /// keeps the clusters of `self.size_rule` (at least
+    /// `self.min_cluster_size` points). Neither validates the parameters nor
+    /// checks the memory bound: see [`ClusteringParams::try_cluster`].
     pub fn cluster(&self, preferences: &Preferences) -> Clustering {
-        cluster(preferences, self.min_cluster_size)
+        cluster_with_rule(preferences, self.size_rule, self.min_cluster_size)
+    }
+
+    /// [`ClusteringParams::cluster`] after [`ClusteringParams::validate`] and
+    /// [`ClusteringParams::check_memory`] at the matrix's own size and density.
+    pub fn try_cluster(&self, preferences: &Preferences) -> Result<Clustering, ClusteringError> {
+        self.validate()?;
+        let (n, m, density) = match preferences {
+            Preferences::Continuous(p) => (p.n_points(), p.n_hypotheses(), p.density()),
+            Preferences::Binary(b) => (b.n_points(), b.n_hypotheses(), b.density()),
+        };
+        self.check_memory(n, m, density)?;
+        Ok(self.cluster(preferences))
+    }
+
+    /// Errors on a [`SizeRule::RelativeMin`] fraction outside `[0, 1]`.
+    pub fn validate(&self) -> Result<(), ClusteringError> {
+        match self.size_rule {
+            SizeRule::RelativeMin(f) if !(0.0..=1.0).contains(&f) => {
+                Err(ClusteringError::InvalidRelativeMin(f))
+            }
+            _ => Ok(()),
+        }
+    }
+
+    /// The [`required_memory`] of N points, M hypotheses and a fraction
+    /// `density` of non-zero preferences; errors with
+    /// [`ClusteringError::MemoryBound`] when it exceeds
+    /// `self.max_memory_bytes`. Call it before generating hypotheses to stop
+    /// at once (with `density` an assumption, e.g. 0.2 for F-matrix
+    /// preferences at `thr_px` 2–3, or 1 for the worst case).
+    ///
+    /// ```
+    /// use clustering::{ClusteringError, ClusteringParams};
+    /// let params = ClusteringParams { max_memory_bytes: Some(200_000_000), ..Default::default() };
+    /// assert!(params.check_memory(5000, 3000, 0.2).is_ok());
+    /// let Err(ClusteringError::MemoryBound { required, .. }) = params.check_memory(20_000, 3000, 0.2)
+    /// else { panic!("N = 20 000 needs more than 200 MB") };
+    /// assert!(required > 200_000_000);
+    /// ```
+    pub fn check_memory(
+        &self,
+        n_points: usize,
+        n_hypotheses: usize,
+        density: f64,
+    ) -> Result<u64, ClusteringError> {
+        let required = required_memory(self.linkage, n_points, n_hypotheses, density);
+        match self.max_memory_bytes {
+            Some(limit) if required > limit => Err(ClusteringError::MemoryBound {
+                n_points,
+                n_hypotheses,
+                required,
+                limit,
+            }),
+            _ => Ok(required),
+        }
     }
 }
 
 /// T-Linkage of continuous preferences, J-Linkage of binary ones, then the
 /// size filter (method.md steps 8–9).
 pub fn cluster(preferences: &Preferences, min_cluster_size: usize) -> Clustering {
-    match preferences {
-        Preferences::Continuous(p) => t_linkage(p, min_cluster_size),
-        Preferences::Binary(b) => j_linkage(b, min_cluster_size),
-    }
+    cluster_with_rule(preferences, SizeRule::MinSize, min_cluster_size)
+}
+
+/// T-Linkage of continuous preferences, J-Linkage of binary ones, then the
+/// clusters of `rule` are kept (method.md steps 8–9; `min_cluster_size` is
+/// the rule's floor).
+pub fn cluster_with_rule(
+    preferences: &Preferences,
+    rule: SizeRule,
+    min_cluster_size: usize,
+) -> Clustering {
+    let (n, merges) = match preferences {
+        Preferences::Continuous(p) => (p.n_points(), tlinkage::merge_sequence(p)),
+        Preferences::Binary(b) => (b.n_points(), jlinkage::merge_sequence(b)),
+    };
+    linkage::labels_from_merges(n, merges, rule, min_cluster_size)
 }

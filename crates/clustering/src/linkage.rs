@@ -3,9 +3,10 @@
 
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
-use std::cmp::Ordering;
-use std::collections::BinaryHeap;
 use std::ops::Range;
+
+use crate::heap::{PairHeap, RunEntry, RunTop};
+use crate::SizeRule;
 
 /// One step of the agglomeration: cluster `removed` was merged into cluster
 /// `kept` at distance `distance`.
@@ -26,14 +27,16 @@ pub struct Merge {
 /// Result of a clustering (method.md steps 8–9).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Clustering {
-    /// One label per point: `0..clusters_after_filter` for the clusters with
-    /// at least `min_cluster_size` points, numbered in ascending order of
+    /// One label per point: `0..clusters_after_filter` for the clusters kept
+    /// by the size rule (by default those with at least `min_cluster_size`
+    /// points; see [`crate::SizeRule`]), numbered in ascending order of
     /// their cluster id (their smallest point index); −1 for the points of
     /// smaller clusters (outliers).
     pub labels: Vec<i32>,
     /// Number of clusters when the agglomeration stopped.
     pub clusters_before_filter: usize,
-    /// Number of clusters with at least `min_cluster_size` points.
+    /// Number of clusters kept by the size rule (by default those with at
+    /// least `min_cluster_size` points).
     pub clusters_after_filter: usize,
     /// The merges in the order they were made.
     pub merges: Vec<Merge>,
@@ -56,7 +59,8 @@ pub(crate) trait AgglomerationState: Sync {
     fn n_clusters(&self) -> usize;
     /// Distances (or lower bounds) between the initial clusters `i` and `k`
     /// for every `i` in `rows` and every `k` in `i + 1..n`; appends
-    /// `(i, k, candidate)` for the pairs with candidate `d < 1` only.
+    /// `(i, k, candidate)` for the pairs with candidate `d < 1` only, in
+    /// ascending order of `i`.
     fn initial_distances(&self, rows: Range<usize>, out: &mut Vec<(u32, u32, Candidate)>);
     /// The exact distance between the active clusters `i` and `k`.
     fn exact_distance(&mut self, i: usize, k: usize) -> f64;
@@ -64,6 +68,7 @@ pub(crate) trait AgglomerationState: Sync {
     /// already marks `removed` inactive), then appends the distances (or
     /// lower bounds) from the merged cluster to every other active cluster
     /// `k` as `(k, candidate)`, for the candidates with `d < 1` only.
+    /// (the same as [`AgglomerationState::candidates`] of `kept` after the merge).
     fn merge(
         &mut self,
         kept: usize,
@@ -71,152 +76,17 @@ pub(crate) trait AgglomerationState: Sync {
         active: &[bool],
         out: &mut Vec<(u32, Candidate)>,
     );
-}
-
-/// An entry of the run of cluster `owner`: the pair `(owner, other)` at
-/// distance (or lower bound) `d`, computed when `other` had version
-/// `tag >> 1`; bit 0 of `tag` says whether `d` is exact.
-#[derive(Debug, Clone, Copy)]
-struct RunEntry {
-    d: f64,
-    other: u32,
-    tag: u32,
-}
-
-impl RunEntry {
-    fn new(d: f64, other: u32, other_version: u32, exact: bool) -> Self {
-        Self {
-            d,
-            other,
-            tag: other_version << 1 | u32::from(exact),
-        }
-    }
-
-    fn other_version(&self) -> u32 {
-        self.tag >> 1
-    }
-
-    fn exact(&self) -> bool {
-        self.tag & 1 == 1
-    }
-
-    /// Within one owner's run the pair key `(d, min(owner, other),
-    /// max(owner, other))` orders like `(d, other)`.
-    fn key_cmp(&self, other: &Self) -> Ordering {
-        self.d
-            .total_cmp(&other.d)
-            .then(self.other.cmp(&other.other))
-            .then(self.tag.cmp(&other.tag))
-    }
-}
-
-impl PartialEq for RunEntry {
-    fn eq(&self, other: &Self) -> bool {
-        self.key_cmp(other) == Ordering::Equal
-    }
-}
-
-impl Eq for RunEntry {}
-
-impl PartialOrd for RunEntry {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-
-impl Ord for RunEntry {
-    /// Reversed: `BinaryHeap` is a max-heap and we pop the smallest.
-    fn cmp(&self, other: &Self) -> Ordering {
-        other.key_cmp(self)
-    }
-}
-
-/// The smallest entry of the run of `owner` (at version `owner_version`),
-/// keyed by the pair `(d, i, j)`, `i < j`.
-#[derive(Debug, Clone, Copy)]
-struct Head {
-    d: f64,
-    i: u32,
-    j: u32,
-    owner: u32,
-    owner_version: u32,
-}
-
-impl Head {
-    fn key_cmp(&self, other: &Self) -> Ordering {
-        self.d
-            .total_cmp(&other.d)
-            .then(self.i.cmp(&other.i))
-            .then(self.j.cmp(&other.j))
-            .then(self.owner.cmp(&other.owner))
-            .then(self.owner_version.cmp(&other.owner_version))
-    }
-}
-
-impl PartialEq for Head {
-    fn eq(&self, other: &Self) -> bool {
-        self.key_cmp(other) == Ordering::Equal
-    }
-}
-
-impl Eq for Head {}
-
-impl PartialOrd for Head {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-
-impl Ord for Head {
-    fn cmp(&self, other: &Self) -> Ordering {
-        other.key_cmp(self)
-    }
+    /// Appends the distances (or lower bounds) from the active cluster
+    /// `cluster` to every other active cluster `k` as `(k, candidate)`, for
+    /// the candidates with `d < 1` only.
+    fn candidates(&mut self, cluster: usize, active: &[bool], out: &mut Vec<(u32, Candidate)>);
 }
 
 /// Rows of the initial pair distances handled by one parallel task.
 pub(crate) const ROWS_PER_TASK: usize = 8;
 
-/// The min-heap of pair entries with lazy deletion.
-///
-/// It is kept as a two-level heap: every entry belongs to the *run* of the
-/// cluster whose merge (or initial row) produced it — a small min-heap of
-/// the entries `(owner, other)` — and a heap of *heads* holds the smallest
-/// entry of every run. Popping the smallest head pops the smallest entry of
-/// all, ordered by `(d, i, j)` exactly as one flat heap would. When a
-/// cluster changes, every entry of its run is stale at once, so its run is
-/// discarded whole instead of entry by entry; this only changes how fast
-/// stale entries are discarded, not which entry is the smallest valid one.
-struct PairHeap {
-    runs: Vec<BinaryHeap<RunEntry>>,
-    heads: BinaryHeap<Head>,
-}
-
-impl PairHeap {
-    fn push_head(&mut self, owner: usize, owner_version: u32) {
-        if let Some(top) = self.runs[owner].peek() {
-            let (i, j) = if (top.other as usize) < owner {
-                (top.other, owner as u32)
-            } else {
-                (owner as u32, top.other)
-            };
-            self.heads.push(Head {
-                d: top.d,
-                i,
-                j,
-                owner: owner as u32,
-                owner_version,
-            });
-        }
-    }
-
-    fn replace_run(&mut self, owner: usize, owner_version: u32, entries: Vec<RunEntry>) {
-        self.runs[owner] = BinaryHeap::from(entries);
-        self.push_head(owner, owner_version);
-    }
-}
-
 /// Agglomerative clustering with a lazy-deletion min-heap (method.md step 8,
-/// thesis Section 6.3), then the size filter (step 9).
+/// thesis Section 6.3); returns the merges (step 9 is [`labels_from_merges`]).
 ///
 /// 1. Every pair `i < j` of points with `d < 1` enters the heap; entries are
 ///    ordered by `d`, then `i`, then `j`.
@@ -235,35 +105,44 @@ impl PairHeap {
 /// same pair key). When a valid bound is popped, the exact distance is
 /// computed and pushed back (if `< 1`); since it is `≥` the bound, every
 /// entry popped as the smallest *exact* valid entry is the one the plain
-/// algorithm would pop, and the merges are identical.
+/// algorithm would pop, and the merges are identical. The heap keeps at
+/// most `run_capacity` entries per cluster and recomputes the others when
+/// they could be next ([`PairHeap`]), which changes the memory, not the
+/// merges.
 ///
 /// The initial distances are computed in parallel, one task per block of
 /// rows, and collected in row order, so the result does not depend on the
 /// number of threads.
-pub(crate) fn agglomerate<S: AgglomerationState>(
-    mut state: S,
-    min_cluster_size: usize,
-) -> Clustering {
+pub(crate) fn agglomerate<S: AgglomerationState>(mut state: S, run_capacity: usize) -> Vec<Merge> {
     let n = state.n_clusters();
-    let rows: Vec<Vec<RunEntry>> = (0..n.div_ceil(ROWS_PER_TASK))
+    let capacity = run_capacity.max(1);
+    let blocks: Vec<Vec<(Vec<RunEntry>, Option<RunEntry>)>> = (0..n.div_ceil(ROWS_PER_TASK))
         .into_par_iter()
-        .flat_map_iter(|block| {
-            let rows = block * ROWS_PER_TASK..((block + 1) * ROWS_PER_TASK).min(n);
-            let mut pairs = Vec::new();
-            state.initial_distances(rows.clone(), &mut pairs);
-            let mut runs = vec![Vec::new(); rows.len()];
-            for (i, k, c) in pairs {
-                runs[i as usize - rows.start].push(RunEntry::new(c.d, k, 0, c.exact));
-            }
-            runs
-        })
+        .map_init(
+            || (Vec::new(), Vec::new()),
+            |(pairs, scratch), block| {
+                let rows = block * ROWS_PER_TASK..((block + 1) * ROWS_PER_TASK).min(n);
+                pairs.clear();
+                state.initial_distances(rows.clone(), pairs);
+                // The pairs come in row order: each row's are a contiguous run.
+                let mut rest = pairs.as_slice();
+                rows.map(|i| {
+                    let count = rest.iter().take_while(|p| p.0 as usize == i).count();
+                    let (row, tail) = rest.split_at(count);
+                    rest = tail;
+                    scratch.extend(
+                        row.iter()
+                            .map(|&(_, k, c)| RunEntry::new(c.d, k, 0, c.exact)),
+                    );
+                    PairHeap::truncate(scratch, capacity)
+                })
+                .collect()
+            },
+        )
         .collect();
-    let mut heap = PairHeap {
-        runs: vec![BinaryHeap::new(); n],
-        heads: BinaryHeap::with_capacity(n),
-    };
-    for (i, run) in rows.into_iter().enumerate() {
-        heap.replace_run(i, 0, run);
+    let mut heap = PairHeap::new(n, capacity);
+    for (i, (run, floor)) in blocks.into_iter().flatten().enumerate() {
+        heap.set_run(i, run, floor);
     }
 
     let mut active = vec![true; n];
@@ -275,9 +154,13 @@ pub(crate) fn agglomerate<S: AgglomerationState>(
         if !active[owner] || version[owner] != head.owner_version {
             continue; // the whole run is stale
         }
-        let entry = heap.runs[owner]
-            .pop()
-            .expect("a live head is its run's top");
+        let entry = match heap.pop_run(owner) {
+            RunTop::Entry(entry) => entry,
+            RunTop::Refill => {
+                refill(&mut state, &mut heap, owner, &active, &version, &mut fresh);
+                continue;
+            }
+        };
         let other = entry.other as usize;
         let valid = active[other] && version[other] == entry.other_version();
         if !(valid && entry.exact()) {
@@ -285,7 +168,7 @@ pub(crate) fn agglomerate<S: AgglomerationState>(
                 let d = state.exact_distance(owner, other);
                 debug_assert!(d >= entry.d, "lower bound {} above distance {d}", entry.d);
                 if d < 1.0 {
-                    heap.runs[owner].push(RunEntry::new(d, entry.other, version[other], true));
+                    heap.push(owner, RunEntry::new(d, entry.other, version[other], true));
                 }
             }
             heap.push_head(owner, version[owner]);
@@ -308,23 +191,48 @@ pub(crate) fn agglomerate<S: AgglomerationState>(
         });
         fresh.clear();
         state.merge(i, j, &active, &mut fresh);
-        heap.runs[j] = BinaryHeap::new();
+        heap.clear(j);
         let run = fresh
             .iter()
-            .map(|&(k, c)| RunEntry::new(c.d, k, version[k as usize], c.exact))
-            .collect();
+            .map(|&(k, c)| RunEntry::new(c.d, k, version[k as usize], c.exact));
         heap.replace_run(i, version[i], run);
     }
-    labels_from_merges(n, merges, min_cluster_size)
+    merges
+}
+
+/// Refills the run of `owner` whose floor reached the top of the heap: its
+/// candidates to the active clusters it was paired with (every later point
+/// for an initial row, every other cluster after a merge) whose pair key is
+/// not below the floor, with the entries the run still holds.
+fn refill<S: AgglomerationState>(
+    state: &mut S,
+    heap: &mut PairHeap,
+    owner: usize,
+    active: &[bool],
+    version: &[u32],
+    fresh: &mut Vec<(u32, Candidate)>,
+) {
+    let (entries, floor) = heap.take_run(owner);
+    let floor = floor.expect("a run is refilled only when it has a floor");
+    fresh.clear();
+    state.candidates(owner, active, fresh);
+    let initial_row = version[owner] == 0;
+    let recomputed = fresh
+        .iter()
+        .filter(|&&(k, _)| !initial_row || k as usize > owner)
+        .map(|&(k, c)| RunEntry::new(c.d, k, version[k as usize], c.exact))
+        .filter(|e| e.not_below(&floor));
+    heap.replace_run(owner, version[owner], entries.into_iter().chain(recomputed));
 }
 
 /// Labels from the merge sequence (method.md step 9): each point belongs to
 /// the surviving cluster its merges lead to; clusters are numbered in
-/// ascending order of surviving id; clusters smaller than
-/// `min_cluster_size` get −1.
+/// ascending order of surviving id; clusters smaller than the minimum size
+/// of `rule` ([`SizeRule::min_size`], at least `min_cluster_size`) get −1.
 pub(crate) fn labels_from_merges(
     n: usize,
     merges: Vec<Merge>,
+    rule: SizeRule,
     min_cluster_size: usize,
 ) -> Clustering {
     let mut parent: Vec<usize> = (0..n).collect();
@@ -341,6 +249,7 @@ pub(crate) fn labels_from_merges(
     for &r in &root {
         size[r] += 1;
     }
+    let min_size = rule.min_size(&size, n, min_cluster_size);
     let mut new_id = vec![-1i32; n];
     let mut clusters_before_filter = 0;
     let mut clusters_after_filter = 0;
@@ -349,7 +258,7 @@ pub(crate) fn labels_from_merges(
             continue;
         }
         clusters_before_filter += 1;
-        if size[c] >= min_cluster_size {
+        if size[c] >= min_size {
             new_id[c] = clusters_after_filter as i32;
             clusters_after_filter += 1;
         }

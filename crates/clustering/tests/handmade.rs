@@ -250,6 +250,7 @@ fn params_choose_the_linkage_and_the_filter() {
         let params = ClusteringParams {
             linkage,
             min_cluster_size: 3,
+            ..Default::default()
         };
         let mut builder = params.preference_builder(6, 1.0).unwrap();
         for j in 0..3 {

@@ -4,8 +4,9 @@
 mod kernels;
 
 use crate::distance::{tanimoto_distance, tanimoto_lower_bound};
-use crate::linkage::{agglomerate, AgglomerationState, Candidate, Clustering};
-use crate::PreferenceMatrix;
+use crate::heap::RUN_CAPACITY;
+use crate::linkage::{agglomerate, labels_from_merges, AgglomerationState, Candidate, Clustering};
+use crate::{Merge, PreferenceMatrix, SizeRule};
 use kernels::{avx2_available, bound_margin, quantise, LANES, LEVELS};
 use std::borrow::Cow;
 use std::ops::Range;
@@ -40,7 +41,17 @@ use std::ops::Range;
 /// assert_eq!((c.merges[0].kept, c.merges[0].removed), (0, 2));
 /// ```
 pub fn t_linkage(preferences: &PreferenceMatrix, min_cluster_size: usize) -> Clustering {
-    agglomerate(ContinuousState::new(preferences), min_cluster_size)
+    labels_from_merges(
+        preferences.n_points(),
+        merge_sequence(preferences),
+        SizeRule::MinSize,
+        min_cluster_size,
+    )
+}
+
+/// The merges of T-Linkage (method.md step 8), before any size filter.
+pub(crate) fn merge_sequence(preferences: &PreferenceMatrix) -> Vec<Merge> {
+    agglomerate(ContinuousState::new(preferences), RUN_CAPACITY)
 }
 
 /// Marks a slot that holds no active cluster.
@@ -213,7 +224,10 @@ impl<'a> ContinuousState<'a> {
             std::mem::take(&mut self.value[removed]),
         );
         let slot = self.slot_of_cluster[kept] as usize;
-        let (mut index, mut value) = (Vec::new(), Vec::new());
+        // The intersection has at most the shorter length: allocated once,
+        // never grown.
+        let capacity = old_index.len().min(b_index.len());
+        let (mut index, mut value) = (Vec::with_capacity(capacity), Vec::with_capacity(capacity));
         let (mut y, mut norm) = (0, 0.0);
         for (&j, &a) in old_index.iter().zip(old_value.iter()) {
             while y < b_index.len() && b_index[y] < j {
@@ -262,10 +276,21 @@ impl AgglomerationState for ContinuousState<'_> {
         active: &[bool],
         out: &mut Vec<(u32, Candidate)>,
     ) {
-        let norm = self.merge_exact(kept, removed);
-        self.norms[kept] = norm;
-        kernels::merged_bounds(self, kept);
-        let own_slot = self.slot_of_cluster[kept] as usize;
+        self.norms[kept] = self.merge_exact(kept, removed);
+        let removed_slot = self.slot_of_cluster[removed] as usize;
+        self.cluster_of_slot[removed_slot] = DEAD;
+        self.slot_of_cluster[removed] = DEAD;
+        self.live_slots -= 1;
+        if self.width > MIN_COMPACTION_WIDTH && 2 * self.live_slots <= self.width {
+            self.compact();
+        }
+        self.candidates(kept, active, out);
+    }
+
+    fn candidates(&mut self, cluster: usize, active: &[bool], out: &mut Vec<(u32, Candidate)>) {
+        kernels::merged_bounds(self, cluster);
+        let norm = self.norms[cluster];
+        let own_slot = self.slot_of_cluster[cluster] as usize;
         for (s, &c) in self.cluster_of_slot.iter().enumerate() {
             if c == DEAD || s == own_slot || !active[c as usize] {
                 continue;
@@ -274,13 +299,6 @@ impl AgglomerationState for ContinuousState<'_> {
             if candidate.d < 1.0 {
                 out.push((c, candidate));
             }
-        }
-        let removed_slot = self.slot_of_cluster[removed] as usize;
-        self.cluster_of_slot[removed_slot] = DEAD;
-        self.slot_of_cluster[removed] = DEAD;
-        self.live_slots -= 1;
-        if self.width > MIN_COMPACTION_WIDTH && 2 * self.live_slots <= self.width {
-            self.compact();
         }
     }
 }
@@ -419,10 +437,51 @@ mod tests {
             let p = random_matrix(&mut rng, n, m, [0.1, 0.4, 0.9][case % 3]);
             let mut state = ContinuousState::new(&p);
             state.avx2 = false;
+            let merges = agglomerate(state, RUN_CAPACITY);
             assert_eq!(
-                agglomerate(state, 0),
+                labels_from_merges(n, merges, SizeRule::MinSize, 0),
                 reference::t_linkage(&p, 0),
                 "case {case}"
+            );
+        }
+    }
+
+    /// Runs bounded to very few entries (refilled all the time) give the
+    /// reference merges: the bound changes the memory, not the result.
+    #[test]
+    fn bounded_runs_give_the_reference_result() {
+        let mut rng = Xorshift(21);
+        for case in 0..40 {
+            let (n, m) = (
+                2 + (rng.next() % 70) as usize,
+                1 + (rng.next() % 150) as usize,
+            );
+            let p = random_matrix(&mut rng, n, m, [0.05, 0.3, 0.8][case % 3]);
+            let expected = reference::t_linkage(&p, 0);
+            for capacity in [1, 2, 3, 7] {
+                let merges = agglomerate(ContinuousState::new(&p), capacity);
+                assert_eq!(
+                    labels_from_merges(n, merges, SizeRule::MinSize, 0),
+                    expected,
+                    "case {case}, capacity {capacity}"
+                );
+            }
+        }
+    }
+
+    /// At a realistic size the bounded heap gives the merges of the
+    /// unbounded one (every pair kept: the implementation before the bound).
+    #[test]
+    fn bounded_runs_equal_the_unbounded_heap_at_large_n() {
+        let mut rng = Xorshift(5);
+        let p = random_matrix(&mut rng, 900, 250, 0.2);
+        let unbounded = agglomerate(ContinuousState::new(&p), usize::MAX);
+        assert!(unbounded.len() > 800);
+        for capacity in [RUN_CAPACITY, 4] {
+            assert_eq!(
+                agglomerate(ContinuousState::new(&p), capacity),
+                unbounded,
+                "capacity {capacity}"
             );
         }
     }

@@ -1,0 +1,63 @@
+//! The memory the clustering phase needs, so that a problem too large for a
+//! budget is refused at once ([`crate::ClusteringParams::check_memory`])
+//! instead of failing after minutes of work.
+//!
+//! The model counts the largest structures at their sizes (bytes):
+//!
+//! | structure | T-Linkage | J-Linkage |
+//! |---|---|---|
+//! | preferences | `12 · nnz` (u32 index + f64 value), ×2 while built (vector growth) | `N · ⌈M/64⌉ · 8`, ×3 (builder columns, matrix, cluster copy) |
+//! | merged clusters | `≤ 12 · nnz` (intersections of the rows) | — |
+//! | bound matrix | `2 · M · ⌈N⌉₁₆` (u16, hypothesis-major) | — |
+//! | heap | `N · (RUN_CAPACITY + 1) · 16` | same |
+//! | per-point scratch | `64 · N` | same |
+//!
+//! with `nnz = density · N · M` the non-zero preferences. It is an upper
+//! estimate of the phase alone (not of the caller's points and hypotheses):
+//! measured on the synthetic scenes of `examples/peak_memory.rs`, the whole
+//! process stays below it (see the crate README).
+
+use crate::heap::RUN_CAPACITY;
+use crate::Linkage;
+
+/// Bytes of one non-zero continuous preference: a u32 hypothesis index and
+/// an f64 value.
+const BYTES_PER_NONZERO: f64 = 12.0;
+
+/// Estimated peak bytes of building the preferences and clustering them,
+/// for N points, M hypotheses and a fraction `density ∈ [0, 1]` of non-zero
+/// preferences (T-Linkage; J-Linkage ignores it). A density outside
+/// `[0, 1]` (or NaN) is taken as 1, the worst case.
+///
+/// ```
+/// use clustering::{required_memory, Linkage};
+/// let small = required_memory(Linkage::TLinkage, 5000, 3000, 0.2);
+/// let large = required_memory(Linkage::TLinkage, 20_000, 3000, 0.2);
+/// assert!(small < 200_000_000 && large > 3 * small);
+/// ```
+pub fn required_memory(
+    linkage: Linkage,
+    n_points: usize,
+    n_hypotheses: usize,
+    density: f64,
+) -> u64 {
+    let (n, m) = (n_points as f64, n_hypotheses as f64);
+    let density = if (0.0..=1.0).contains(&density) {
+        density
+    } else {
+        1.0
+    };
+    let heap = n * (RUN_CAPACITY as f64 + 1.0) * 16.0;
+    let scratch = 64.0 * n;
+    let bytes = match linkage {
+        Linkage::TLinkage => {
+            let nonzeros = density * n * m;
+            let preferences = 2.0 * BYTES_PER_NONZERO * nonzeros;
+            let merged = BYTES_PER_NONZERO * nonzeros;
+            let bounds = 2.0 * m * (n / 16.0).ceil() * 16.0;
+            preferences + merged + bounds + heap + scratch
+        }
+        Linkage::JLinkage => 3.0 * n * (m / 64.0).ceil() * 8.0 + heap + scratch,
+    };
+    bytes.ceil() as u64
+}
