@@ -197,6 +197,7 @@ fn cluster_kept(
     let clustering_params = ClusteringParams {
         linkage: params.linkage,
         min_cluster_size: params.min_cluster_size,
+        ..ClusteringParams::default()
     };
 
     // Step 7: preferences, one hypothesis (column) at a time.
