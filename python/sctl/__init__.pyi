@@ -104,6 +104,7 @@ def segment(
     eight_point: Literal["normalized", "plain"] = "normalized",
     minimal_solver: Literal["five-point", "eight-point", "seven-point", "six-point-focal"] = "five-point",
     minimal_solutions: Literal["best", "all"] = "best",
+    sampling: Literal["uniform", "localized"] = "uniform",
     focal_solver: Literal["kocur", "bougnoux"] = "kocur",
     weight_sets: _WeightSets = "adelaidermf",
     max_iters: int = 100,
@@ -113,6 +114,7 @@ def segment(
     implausible_focal: Literal["filter", "abstain"] = "filter",
     linkage: Literal["t-linkage", "j-linkage"] = "t-linkage",
     min_cluster_size: int = 8,
+    final_assignment: Literal["none", "refit"] = "none",
 ) -> Segmentation:
     """Segments matches into rigid motions (T-Linkage of five-point
     hypotheses at the focal prior; the thesis: method="semical",

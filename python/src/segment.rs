@@ -51,6 +51,7 @@ use std::fmt::Write as _;
 ///     - eight_point = "normalized"  ("normalized" or "plain")
 ///     - minimal_solver = "five-point"  ("five-point", "eight-point", "seven-point" or "six-point-focal")
 ///     - minimal_solutions = "best"  ("best": most matches within thr_px, or "all")
+///     - sampling = "uniform"        ("uniform", or "localized": the others among the first match's nearest)
 ///     - focal_solver = "kocur"      ("kocur" or "bougnoux")
 ///     - weight_sets = "adelaidermf" ("adelaidermf", "hopef" or [[w_f1, w_pp1, w_f2, w_pp2], ...])
 ///     - max_iters = 100             (iteration cap of the robust focal solver)
@@ -60,6 +61,7 @@ use std::fmt::Write as _;
 ///     - implausible_focal = "filter"  (f_peak outside 0.3-3 x focal_prior: "filter" or "abstain")
 ///     - linkage = "t-linkage"       ("t-linkage" or "j-linkage")
 ///     - min_cluster_size = 8        (smaller clusters become outliers)
+///     - final_assignment = "none"   ("none", or "refit": refitted cluster models, nearest within thr_px)
 ///
 /// Returns
 /// -------

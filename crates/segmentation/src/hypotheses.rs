@@ -2,7 +2,7 @@
 //! another minimal solver) and the IRLS-Tukey refinement of each.
 
 use crate::minimal::{candidates, choose};
-use crate::{minimal_sample, EightPoint, Matches, MinimalSolver, Params, SegmentationError};
+use crate::{EightPoint, Matches, MinimalSampler, MinimalSolver, Params, SegmentationError};
 use geometry::{eight_point_normalized, eight_point_plain, Correspondences, IrlsWorkspace};
 use nalgebra::Matrix3;
 use rayon::prelude::*;
@@ -61,7 +61,8 @@ pub fn centred_points(
     Ok(points)
 }
 
-/// Steps 1–3 of Algorithm 1 (see [`GeneratedHypotheses`]), hypotheses in
+/// Steps 1–3 of Algorithm 1 (see [`GeneratedHypotheses`]): samples drawn
+/// by a [`MinimalSampler`] built once for the scene, hypotheses in
 /// parallel in the caller's rayon pool; the result does not depend on the
 /// number of threads.
 ///
@@ -74,9 +75,10 @@ pub fn generate_hypotheses(
     let points = centred_points(matches, params)?;
 
     let t = Instant::now();
+    let sampler = MinimalSampler::new(matches.points1, params.sampling, params.sample_size());
     let fits = match params.minimal_solver {
-        MinimalSolver::EightPoint => fit_minimal_samples(&points, params),
-        _ => solve_minimal_samples(&points, params, matches.focal_prior),
+        MinimalSolver::EightPoint => fit_minimal_samples(&points, &sampler, params),
+        _ => solve_minimal_samples(&points, &sampler, params, matches.focal_prior),
     };
     let sampling_seconds = t.elapsed().as_secs_f64();
 
@@ -102,12 +104,15 @@ struct SampleFit {
 
 /// Steps 1–2: each minimal sample and its 8-point fit (None when the sample
 /// is degenerate or the fit not finite).
-fn fit_minimal_samples(points: &Correspondences, params: &Params) -> Vec<Option<SampleFit>> {
-    let n = points.len();
+fn fit_minimal_samples(
+    points: &Correspondences,
+    sampler: &MinimalSampler,
+    params: &Params,
+) -> Vec<Option<SampleFit>> {
     (0..params.num_samples)
         .into_par_iter()
         .map(|j| {
-            let sample = minimal_sample(params.seed, j, n, params.mss_size);
+            let sample = sampler.sample(params.seed, j, params.mss_size);
             let subset = points.subset(&sample).ok()?;
             let f = match params.eight_point {
                 EightPoint::Normalized => eight_point_normalized(&subset),
@@ -127,14 +132,15 @@ fn fit_minimal_samples(points: &Correspondences, params: &Params) -> Vec<Option<
 /// `K(f)`.
 fn solve_minimal_samples(
     points: &Correspondences,
+    sampler: &MinimalSampler,
     params: &Params,
     focal: f64,
 ) -> Vec<Option<SampleFit>> {
-    let (n, size) = (points.len(), params.sample_size());
+    let size = params.sample_size();
     let per_sample: Vec<Vec<Option<SampleFit>>> = (0..params.num_samples)
         .into_par_iter()
         .map(|j| {
-            let sample = minimal_sample(params.seed, j, n, size);
+            let sample = sampler.sample(params.seed, j, size);
             let solutions = match points.subset(&sample) {
                 Ok(subset) => candidates(params.minimal_solver, &subset, focal),
                 Err(_) => Vec::new(),

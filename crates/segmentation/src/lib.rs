@@ -7,8 +7,8 @@
 //! focal length, [`segment`] splits them into rigid motions (labels 0, 1, …)
 //! and outliers (−1):
 //!
-//! 1. M minimal samples, drawn per hypothesis from its own random stream
-//!    ([`minimal_sample`]);
+//! 1. M minimal samples, drawn per hypothesis from its own random stream,
+//!    uniformly ([`minimal_sample`]) or localized ([`MinimalSampler`]);
 //! 2. the 8-point F of each (Hartley-normalised or plain, [`EightPoint`]);
 //! 3. IRLS-Tukey refinement ([`generate_hypotheses`]);
 //! 4. focal lengths of each F ([`estimate_hypothesis_focals`]: the robust
@@ -18,7 +18,8 @@
 //!    (Eq. 37) ([`focal_filter`]) — the `semical` method; the `baseline`
 //!    keeps every refined hypothesis;
 //! 7. preferences (Eq. 38), 8. T-Linkage (Eqs. 39–40) or J-Linkage and
-//! 9. the size filter ([`segment_with`]).
+//! 9. the size filter ([`segment_with`]), optionally followed by a final
+//!    assignment to refitted cluster models ([`reassign`]).
 //!
 //! All geometry runs in principal-point-centred pixel coordinates: every F
 //! of a [`Segmentation`] satisfies `x2ᵀ F x1 = 0` for
@@ -26,6 +27,7 @@
 //! parameters and [`Params::seed`] only, not on the number of threads
 //! (hypotheses are computed in the caller's rayon pool).
 
+mod assignment;
 mod error;
 mod filter;
 mod focals;
@@ -38,6 +40,7 @@ mod sampling;
 mod segment;
 mod variants;
 
+pub use assignment::reassign;
 pub use error::SegmentationError;
 pub use filter::{focal_filter, focal_verdict, FilterOutcome, PLAUSIBLE_FOCAL_RANGE};
 pub use focal::FocalConsensus;
@@ -47,13 +50,15 @@ pub use focals::{
 pub use hypotheses::{centred_points, generate_hypotheses, GeneratedHypotheses};
 pub use input::{image_centre, Matches};
 pub use params::{
-    EightPoint, FocalKey, FocalSolver, HypothesisKey, ImplausibleFocal, IrlsFit, Linkage,
-    LocalTest, Method, MinimalSolutions, MinimalSolver, OnFailure, ParamError, Params,
-    WeightPreset, WeightSets, PARAM_KEYS,
+    EightPoint, FinalAssignment, FocalKey, FocalSolver, HypothesisKey, ImplausibleFocal, IrlsFit,
+    Linkage, LocalTest, Method, MinimalSolutions, MinimalSolver, OnFailure, ParamError, Params,
+    Sampling, WeightPreset, WeightSets, PARAM_KEYS,
 };
 pub use result::{
     ClusterModel, FocalVerdict, Hypothesis, HypothesisCounts, HypothesisStatus, Segmentation,
     StageTimings,
 };
-pub use sampling::{hypothesis_rng, minimal_sample, splitmix64};
+pub use sampling::{
+    hypothesis_rng, minimal_sample, neighbourhood_size, splitmix64, MinimalSampler,
+};
 pub use segment::{fit_cluster, segment, segment_with};

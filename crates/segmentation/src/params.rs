@@ -14,7 +14,8 @@ use geometry::IrlsParams;
 use thiserror::Error;
 
 pub use crate::variants::{
-    EightPoint, FocalSolver, ImplausibleFocal, LocalTest, Method, MinimalSolutions, MinimalSolver,
+    EightPoint, FinalAssignment, FocalSolver, ImplausibleFocal, LocalTest, Method,
+    MinimalSolutions, MinimalSolver, Sampling,
 };
 
 /// A named list of multi-start weight sets for the robust focal solver.
@@ -151,6 +152,13 @@ pub struct Params {
     /// matches within `thr_px`) or `all`. Ignored by `eight-point`, which
     /// has one. Default `best`.
     pub minimal_solutions: MinimalSolutions,
+    /// How the matches of a minimal sample are drawn (step 1): `uniform`
+    /// (the thesis) or `localized` (the first uniformly, the others among
+    /// its nearest matches in image 1: NAPSAC, Torr et al. 2002, as
+    /// J-/T-Linkage (Toldo & Fusiello 2008) and Progressive-X sample;
+    /// neighbourhood size [`crate::neighbourhood_size`]). Default
+    /// `uniform`.
+    pub sampling: Sampling,
     /// Focal solver (step 4): `kocur`, `bougnoux` or `external`. Default
     /// `kocur`.
     pub focal_solver: FocalSolver,
@@ -177,6 +185,15 @@ pub struct Params {
     pub linkage: Linkage,
     /// Clusters with fewer points become outliers (step 9). Default 8.
     pub min_cluster_size: usize,
+    /// After the size filter: `none` (the clustering's labels, the thesis)
+    /// or `refit` (each cluster's F refitted by IRLS-Tukey on its points,
+    /// then every match to the cluster of smallest Sampson distance within
+    /// `thr_px`, else outlier; clusters left below `min_cluster_size`
+    /// become outliers; labels numbered by first appearance), as
+    /// Progressive-X (Barath & Matas, ICCV 2019) and consensus-space
+    /// clustering (Barath et al., CVPR 2023) end ([`crate::reassign`]).
+    /// Default `none`.
+    pub final_assignment: FinalAssignment,
     /// Seed of the hypothesis sampling: hypothesis `j` draws from ChaCha8
     /// stream `j` under a key expanded from the seed ([`crate::hypothesis_rng`]),
     /// so the labels depend on the seed and the input only. Default 12345
@@ -216,6 +233,7 @@ impl Params {
             eight_point: EightPoint::Normalized,
             minimal_solver: MinimalSolver::EightPoint,
             minimal_solutions: MinimalSolutions::Best,
+            sampling: Sampling::Uniform,
             focal_solver: FocalSolver::Kocur,
             weight_sets: WeightSets::Preset(WeightPreset::Adelaidermf),
             max_iters: 100,
@@ -225,13 +243,14 @@ impl Params {
             implausible_focal: ImplausibleFocal::Filter,
             linkage: Linkage::TLinkage,
             min_cluster_size: 8,
+            final_assignment: FinalAssignment::None,
             seed: 12345,
         }
     }
 }
 
 /// The keys of [`Params`] in declaration order.
-pub const PARAM_KEYS: [&str; 25] = [
+pub const PARAM_KEYS: [&str; 27] = [
     "method",
     "num_samples",
     "mss_size",
@@ -247,6 +266,7 @@ pub const PARAM_KEYS: [&str; 25] = [
     "eight_point",
     "minimal_solver",
     "minimal_solutions",
+    "sampling",
     "focal_solver",
     "weight_sets",
     "max_iters",
@@ -256,6 +276,7 @@ pub const PARAM_KEYS: [&str; 25] = [
     "implausible_focal",
     "linkage",
     "min_cluster_size",
+    "final_assignment",
     "seed",
 ];
 
@@ -307,10 +328,11 @@ impl Params {
         positive("thr_px", self.thr_px)?;
         positive("tau_diff", self.tau_diff)?;
         positive("tau_range", self.tau_range)?;
-        if self.refine && self.irls_iters == 0 {
+        if (self.refine || self.final_assignment == FinalAssignment::Refit) && self.irls_iters == 0
+        {
             return Err(ParamError::new(
                 "irls_iters",
-                "must be at least 1 when refine = true",
+                "must be at least 1 when refine = true or final_assignment = \"refit\"",
             ));
         }
         if !(self.irls_sigma_offset_px.is_finite() && self.irls_sigma_offset_px >= 0.0) {
@@ -358,6 +380,7 @@ impl Params {
             eight_point: self.eight_point,
             minimal_solver: self.minimal_solver,
             minimal_solutions: self.minimal_solutions,
+            sampling: self.sampling,
             refine: self.refine,
             thr_px_bits: self.thr_px.to_bits(),
             irls_iters: self.irls_iters,
@@ -409,6 +432,7 @@ pub struct HypothesisKey {
     eight_point: EightPoint,
     minimal_solver: MinimalSolver,
     minimal_solutions: MinimalSolutions,
+    sampling: Sampling,
     refine: bool,
     thr_px_bits: u64,
     irls_iters: usize,
@@ -543,6 +567,14 @@ mod tests {
             ..Default::default()
         };
         assert!(no_refine.validate().is_ok());
+        let refit_without_iterations = Params {
+            final_assignment: FinalAssignment::Refit,
+            ..no_refine
+        };
+        assert_eq!(
+            refit_without_iterations.validate().unwrap_err().key,
+            "irls_iters"
+        );
     }
 
     #[test]
@@ -560,6 +592,16 @@ mod tests {
             ..a.clone()
         };
         assert_ne!(a.hypothesis_key(), c.hypothesis_key());
+        let localized = Params {
+            sampling: Sampling::Localized,
+            ..a.clone()
+        };
+        assert_ne!(a.hypothesis_key(), localized.hypothesis_key());
+        let refit = Params {
+            final_assignment: FinalAssignment::Refit,
+            ..a.clone()
+        };
+        assert_eq!(a.hypothesis_key(), refit.hypothesis_key());
         let d = Params {
             weight_sets: WeightSets::Preset(WeightPreset::Hopef),
             ..a.clone()

@@ -73,7 +73,8 @@ pub struct Hypothesis {
     pub focals: Option<(f64, f64)>,
 }
 
-/// A final cluster: its label, its size and the 8-point F of its points.
+/// A final cluster: its label, its size and the 8-point F of its points
+/// (after the final assignment, when there is one).
 #[derive(Debug, Clone, PartialEq)]
 pub struct ClusterModel {
     /// The label (0, 1, …) in [`Segmentation::labels`].
@@ -119,7 +120,8 @@ pub struct StageTimings {
     pub preferences: f64,
     /// Steps 8–9: T-Linkage / J-Linkage and the size filter.
     pub clustering: f64,
-    /// The 8-point fit of each final cluster.
+    /// The 8-point fit of each final cluster, after the final assignment
+    /// when there is one (`final_assignment = "refit"`, counted here).
     pub cluster_fit: f64,
     /// Whole segmentation.
     pub total: f64,

@@ -2,11 +2,12 @@
 //! hypotheses and focals computed beforehand.
 
 use crate::{
-    estimate_hypothesis_focals, focal_filter, generate_hypotheses, ClusterModel, FocalVerdict,
-    GeneratedHypotheses, Hypothesis, HypothesisCounts, HypothesisFocals, HypothesisStatus, Matches,
-    Method, MinimalSolutions, MinimalSolver, Params, Segmentation, SegmentationError, StageTimings,
+    estimate_hypothesis_focals, focal_filter, generate_hypotheses, reassign, ClusterModel,
+    FinalAssignment, FocalVerdict, GeneratedHypotheses, Hypothesis, HypothesisCounts,
+    HypothesisFocals, HypothesisStatus, Matches, Method, MinimalSolutions, MinimalSolver, Params,
+    Segmentation, SegmentationError, StageTimings,
 };
-use clustering::{Clustering, ClusteringParams};
+use clustering::ClusteringParams;
 use geometry::{eight_point_normalized, sampson_distances_squared, Correspondences};
 use nalgebra::Matrix3;
 use std::time::Instant;
@@ -186,7 +187,8 @@ fn nothing_kept_reason(generated: &GeneratedHypotheses) -> &'static str {
 }
 
 /// Steps 7–9 on the kept hypotheses: preferences (Eq. 38), T-/J-Linkage,
-/// the size filter and the 8-point F of each final cluster.
+/// the size filter, the final assignment ([`Params::final_assignment`],
+/// timed with the cluster fits) and the 8-point F of each final cluster.
 fn cluster_kept(
     segmentation: &mut Segmentation,
     generated: &GeneratedHypotheses,
@@ -219,17 +221,30 @@ fn cluster_kept(
     segmentation.timings.clustering = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
-    segmentation.clusters = cluster_models(points, &clustering);
+    let (labels, clusters) = match params.final_assignment {
+        FinalAssignment::None => (clustering.labels, clustering.clusters_after_filter),
+        FinalAssignment::Refit => {
+            let labels = reassign(
+                points,
+                &clustering.labels,
+                clustering.clusters_after_filter,
+                params,
+            );
+            let clusters = labels.iter().map(|&l| l + 1).max().unwrap_or(0) as usize;
+            (labels, clusters)
+        }
+    };
+    segmentation.clusters = cluster_models(points, &labels, clusters);
     segmentation.timings.cluster_fit = t.elapsed().as_secs_f64();
     segmentation.clusters_before_filter = clustering.clusters_before_filter;
-    segmentation.labels = clustering.labels;
+    segmentation.labels = labels;
     Ok(())
 }
 
-/// The 8-point F of each cluster of `clustering`, by label.
-fn cluster_models(points: &Correspondences, clustering: &Clustering) -> Vec<ClusterModel> {
-    let mut members: Vec<Vec<usize>> = vec![Vec::new(); clustering.clusters_after_filter];
-    for (i, &label) in clustering.labels.iter().enumerate() {
+/// The 8-point F of each cluster `0..clusters` of `labels`, by label.
+fn cluster_models(points: &Correspondences, labels: &[i32], clusters: usize) -> Vec<ClusterModel> {
+    let mut members: Vec<Vec<usize>> = vec![Vec::new(); clusters];
+    for (i, &label) in labels.iter().enumerate() {
         if let Ok(label) = usize::try_from(label) {
             members[label].push(i);
         }

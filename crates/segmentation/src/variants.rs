@@ -137,3 +137,39 @@ pub enum ImplausibleFocal {
     /// baseline's bit for bit.
     Abstain,
 }
+
+/// How step 1 draws the matches of a minimal sample.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
+pub enum Sampling {
+    /// Every match equally likely, distinct (the thesis).
+    Uniform,
+    /// NAPSAC (Nasuto & Craddock 2002; Torr et al. 2002), the neighbour
+    /// sampling of J-Linkage and T-Linkage (Toldo & Fusiello 2008; Magri &
+    /// Fusiello 2014) and of Progressive-X (P-NAPSAC, Barath & Matas 2019):
+    /// the first match uniformly, the others uniformly among its
+    /// [`crate::neighbourhood_size`] nearest matches in image 1
+    /// ([`crate::MinimalSampler`]).
+    Localized,
+}
+
+/// What follows the clustering and its size filter (step 9).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
+pub enum FinalAssignment {
+    /// Nothing: the labels are the clustering's (the thesis).
+    None,
+    /// Refit each cluster's F by IRLS-Tukey on its points, then give every
+    /// match the cluster of smallest Sampson distance within `thr_px`, as
+    /// Progressive-X (Barath & Matas, ICCV 2019) and consensus-space
+    /// clustering (Barath et al., CVPR 2023) end ([`crate::reassign`]).
+    Refit,
+}

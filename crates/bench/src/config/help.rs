@@ -42,6 +42,8 @@ EXPERIMENT FILE (TOML)
   minimal_solver = \"five-point\"   five-point (E at the focal prior) | eight-point
                                | seven-point | six-point-focal (shared unknown f)
   minimal_solutions = \"best\"   best (most matches within thr_px) | all
+  sampling = \"uniform\"        uniform | localized (the others among the first
+                               match's nearest in image 1: NAPSAC)
   focal_solver = \"kocur\"       kocur | bougnoux | external (read from focal_file)
   focal_file = \"f{seed}.csv\"   focal_solver = \"external\": CSV of scene,hypothesis,f1,f2
   weight_sets = \"adelaidermf\"  adelaidermf | hopef | [[w_f1, w_pp1, w_f2, w_pp2], ...]
@@ -53,6 +55,8 @@ EXPERIMENT FILE (TOML)
                                (keep every hypothesis: the baseline's labels)
   linkage = \"t-linkage\"        t-linkage | j-linkage
   min_cluster_size = 8         smaller clusters become outliers
+  final_assignment = \"none\"   none | refit (IRLS refit of each cluster, then
+                               each match to its nearest model within thr_px)
   seed = 12345                 sampling seed
 
   [sweep]                      any [pipeline] key as a list; the run is the

@@ -3,8 +3,8 @@
 
 use super::{parse_toml, ConfigError};
 use segmentation::{
-    EightPoint, FocalSolver, ImplausibleFocal, IrlsFit, Linkage, LocalTest, Method,
-    MinimalSolutions, MinimalSolver, OnFailure, ParamError, Params, WeightSets,
+    EightPoint, FinalAssignment, FocalSolver, ImplausibleFocal, IrlsFit, Linkage, LocalTest,
+    Method, MinimalSolutions, MinimalSolver, OnFailure, ParamError, Params, Sampling, WeightSets,
 };
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -39,6 +39,7 @@ pub struct PipelineConfig {
     pub eight_point: EightPoint,
     pub minimal_solver: MinimalSolver,
     pub minimal_solutions: MinimalSolutions,
+    pub sampling: Sampling,
     pub focal_solver: FocalSolver,
     /// The CSV of `focal_solver = "external"` (see [`crate::focal_file`]),
     /// relative to the working directory; `{seed}` is replaced by the seed.
@@ -55,6 +56,7 @@ pub struct PipelineConfig {
     pub implausible_focal: ImplausibleFocal,
     pub linkage: Linkage,
     pub min_cluster_size: usize,
+    pub final_assignment: FinalAssignment,
     /// The run's seed; scene `s` is segmented with the seed
     /// [`crate::pipeline::scene_seed`]`(seed, s)`, as in every committed result.
     pub seed: u64,
@@ -68,7 +70,7 @@ impl Default for PipelineConfig {
 
 /// The keys of [`PipelineConfig`] in declaration order: the order of the
 /// swept-parameter columns in every output file.
-pub const PIPELINE_KEYS: [&str; 26] = [
+pub const PIPELINE_KEYS: [&str; 28] = [
     "method",
     "num_samples",
     "mss_size",
@@ -84,6 +86,7 @@ pub const PIPELINE_KEYS: [&str; 26] = [
     "eight_point",
     "minimal_solver",
     "minimal_solutions",
+    "sampling",
     "focal_solver",
     "focal_file",
     "weight_sets",
@@ -94,6 +97,7 @@ pub const PIPELINE_KEYS: [&str; 26] = [
     "implausible_focal",
     "linkage",
     "min_cluster_size",
+    "final_assignment",
     "seed",
 ];
 
@@ -116,6 +120,7 @@ impl PipelineConfig {
             eight_point: p.eight_point,
             minimal_solver: p.minimal_solver,
             minimal_solutions: p.minimal_solutions,
+            sampling: p.sampling,
             focal_solver: p.focal_solver,
             focal_file: String::new(),
             weight_sets: p.weight_sets,
@@ -126,6 +131,7 @@ impl PipelineConfig {
             implausible_focal: p.implausible_focal,
             linkage: p.linkage,
             min_cluster_size: p.min_cluster_size,
+            final_assignment: p.final_assignment,
             seed: p.seed,
         }
     }
@@ -148,6 +154,7 @@ impl PipelineConfig {
             eight_point: self.eight_point,
             minimal_solver: self.minimal_solver,
             minimal_solutions: self.minimal_solutions,
+            sampling: self.sampling,
             focal_solver: self.focal_solver,
             weight_sets: self.weight_sets.clone(),
             max_iters: self.max_iters,
@@ -157,6 +164,7 @@ impl PipelineConfig {
             implausible_focal: self.implausible_focal,
             linkage: self.linkage,
             min_cluster_size: self.min_cluster_size,
+            final_assignment: self.final_assignment,
             seed: self.seed,
         }
     }

@@ -76,6 +76,36 @@ fn bad_enum_value_names_the_key() {
 }
 
 #[test]
+fn sampling_and_final_assignment_read_and_reject_bad_values() {
+    let c = parse(BASE).unwrap();
+    assert_eq!(c.pipeline.sampling, segmentation::Sampling::Uniform);
+    assert_eq!(
+        c.pipeline.final_assignment,
+        segmentation::FinalAssignment::None
+    );
+    let c = parse(&format!(
+        "{BASE}[pipeline]\nsampling = \"localized\"\nfinal_assignment = \"refit\"\n"
+    ))
+    .unwrap();
+    let p = c.pipeline.params();
+    assert_eq!(p.sampling, segmentation::Sampling::Localized);
+    assert_eq!(p.final_assignment, segmentation::FinalAssignment::Refit);
+    assert_eq!(PipelineConfig::from_params(p), c.pipeline);
+    let err = parse(&format!("{BASE}[pipeline]\nsampling = \"napsac\"\n")).unwrap_err();
+    assert!(
+        err.to_string()
+            .starts_with("exp.toml:5: pipeline.sampling: unknown variant `napsac`"),
+        "{err}"
+    );
+    let err = parse(&format!("{BASE}[pipeline]\nfinal_assignment = true\n")).unwrap_err();
+    assert!(
+        err.to_string()
+            .starts_with("exp.toml:5: pipeline.final_assignment:"),
+        "{err}"
+    );
+}
+
+#[test]
 fn out_of_range_value_names_the_key_and_line() {
     let err = parse(&format!("{BASE}[pipeline]\n\ntau_range = -0.1\n")).unwrap_err();
     assert_eq!(
