@@ -14,8 +14,10 @@ pub const METADATA_FILE: &str = "synthetic.toml";
 #[derive(Debug, clap::Args)]
 pub struct Args {
     /// Preset: hopef-like (4 x 100 scenes), quick (4 small scenes),
-    /// kitti-like (background + movers, 20 scenes) or hopef (HOPE-F's own
-    /// process, 4 x 1000 scenes with train/val/test folders).
+    /// kitti-like (background + movers, 20 scenes), hopef (HOPE-F's own
+    /// process, 4 x 1000 scenes with train/val/test folders) or kitti-real
+    /// (1242 x 375 driving scenes of 1000-5000 matches, 2 x 1000 scenes with
+    /// train/val/test folders).
     #[arg(long, default_value = "hopef-like")]
     pub preset: String,
     /// Output directory (created; must be empty unless --force).

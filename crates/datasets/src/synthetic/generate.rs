@@ -8,11 +8,10 @@ use nalgebra::{Matrix3, Vector3};
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rand_distr::{Distribution, StandardNormal};
 
 use super::sampling::{
-    fundamental, project, random_rotation, random_unit, sample_shape, uniform, uniform_count,
-    view2, Camera,
+    fundamental, intrinsics, project, random_rotation, random_unit, sample_shape, truncated_noise,
+    uniform, uniform_count, view2, Camera,
 };
 use super::SyntheticParams;
 use crate::{DatasetError, Scene};
@@ -73,10 +72,14 @@ struct Objects {
 }
 
 /// The matches of a scene, in generation order.
-struct Matches {
-    points1: Vec<[f64; 2]>,
-    points2: Vec<[f64; 2]>,
-    labels: Vec<i32>,
+#[derive(Default)]
+pub(super) struct Matches {
+    /// Image-1 points.
+    pub(super) points1: Vec<[f64; 2]>,
+    /// Image-2 points.
+    pub(super) points2: Vec<[f64; 2]>,
+    /// Labels (0 outlier, 1.. motions).
+    pub(super) labels: Vec<i32>,
 }
 
 /// Generates the scene `name` with `num_objects` moving objects from `seed`.
@@ -103,7 +106,8 @@ pub(super) fn generate(
     }
     let mut matches = noisy_matches(&mut rng, params, &cam, &objects.tracks);
     add_outliers(&mut rng, params.outlier_fraction, &cam, &mut matches);
-    let scene = shuffled_scene(&mut rng, params, &cam, name, matches, objects.fundamentals);
+    let size = (params.image_width, params.image_height);
+    let scene = shuffled_scene(&mut rng, size, &cam, name, matches, objects.fundamentals);
     scene.validate()?;
     Ok(Generated {
         scene,
@@ -127,17 +131,7 @@ fn draw_camera(
         (width - 1.0) / 2.0 + rng.gen_range(-1.0..=1.0) * jitter,
         (height - 1.0) / 2.0 + rng.gen_range(-1.0..=1.0) * jitter,
     ];
-    let k = Matrix3::new(
-        focal,
-        0.0,
-        principal_point[0],
-        0.0,
-        focal,
-        principal_point[1],
-        0.0,
-        0.0,
-        1.0,
-    );
+    let k = intrinsics(focal, principal_point);
     let k_inv = k.try_inverse().ok_or_else(|| DatasetError::Generation {
         scene: name.to_string(),
         problem: "singular intrinsics".into(),
@@ -307,10 +301,7 @@ fn add_background(
     let n = uniform_count(rng, bg.points);
     let pad = 10.0;
     for _ in 0..n {
-        let pixel = [
-            rng.gen_range(0.0..=cam.width - 1.0),
-            rng.gen_range(0.0..=cam.height - 1.0),
-        ];
+        let pixel = cam.random_pixel(rng);
         let occluded = objects.boxes.iter().any(|b| {
             (b.lo[0] - pad..=b.hi[0] + pad).contains(&pixel[0])
                 && (b.lo[1] - pad..=b.hi[1] + pad).contains(&pixel[1])
@@ -338,23 +329,13 @@ fn noisy_matches(
     cam: &Camera,
     tracks: &[Track],
 ) -> Matches {
-    let sigma = params.noise_sigma;
-    let limit = params.noise_truncation * sigma;
     let mut m = Matches {
         points1: Vec::with_capacity(tracks.len()),
         points2: Vec::with_capacity(tracks.len()),
         labels: Vec::with_capacity(tracks.len()),
     };
     for tr in tracks {
-        let noise = loop {
-            let v: [f64; 4] = std::array::from_fn(|_| {
-                let z: f64 = StandardNormal.sample(rng);
-                z * sigma
-            });
-            if limit == 0.0 || v.iter().map(|x| x * x).sum::<f64>() <= limit * limit {
-                break v;
-            }
-        };
+        let noise = truncated_noise(rng, params.noise_sigma, params.noise_truncation);
         let p1 = [tr.p1[0] + noise[0], tr.p1[1] + noise[1]];
         let p2 = [tr.p2[0] + noise[2], tr.p2[1] + noise[3]];
         if cam.inside(p1) && cam.inside(p2) {
@@ -370,23 +351,22 @@ fn noisy_matches(
 /// final total, so `n_out = q n_in / (1 − q)`.
 fn add_outliers(rng: &mut ChaCha8Rng, q: f64, cam: &Camera, m: &mut Matches) {
     let n_out = (q * m.labels.len() as f64 / (1.0 - q)).round() as usize;
-    for _ in 0..n_out {
-        m.points1.push([
-            rng.gen_range(0.0..=cam.width - 1.0),
-            rng.gen_range(0.0..=cam.height - 1.0),
-        ]);
-        m.points2.push([
-            rng.gen_range(0.0..=cam.width - 1.0),
-            rng.gen_range(0.0..=cam.height - 1.0),
-        ]);
+    push_outliers(rng, n_out, cam, m);
+}
+
+/// `n` gross outliers (label 0): a pixel uniform in each image.
+pub(super) fn push_outliers(rng: &mut ChaCha8Rng, n: usize, cam: &Camera, m: &mut Matches) {
+    for _ in 0..n {
+        m.points1.push(cam.random_pixel(rng));
+        m.points2.push(cam.random_pixel(rng));
         m.labels.push(0);
     }
 }
 
 /// The scene with its matches shuffled, so that labels are not grouped.
-fn shuffled_scene(
+pub(super) fn shuffled_scene(
     rng: &mut ChaCha8Rng,
-    params: &SyntheticParams,
+    image_size: (u32, u32),
     cam: &Camera,
     name: &str,
     m: Matches,
@@ -399,7 +379,7 @@ fn shuffled_scene(
         points1: order.iter().map(|&i| m.points1[i]).collect(),
         points2: order.iter().map(|&i| m.points2[i]).collect(),
         labels: Some(order.iter().map(|&i| m.labels[i]).collect()),
-        image_size: (params.image_width, params.image_height),
+        image_size,
         principal_point: cam.principal_point,
         true_focal: Some(cam.focal),
         gt_fundamentals: fundamentals,

@@ -30,13 +30,20 @@
 //! Files: the parameters, scenes and entry points here; the random draws
 //! and the camera in [`sampling`](self) (`sampling.rs`), the generation
 //! phases in `generate.rs`, the named presets in `presets.rs` and the
-//! HOPE-F layout writer in `write.rs`.
+//! HOPE-F layout writer in `write.rs`. The driving scenes of the
+//! `kitti-real` preset (real image size, N 1 000–5 000, separable cars) have
+//! their own generator ([`generate_driving_scene`], `driving.rs`) and
+//! parameters ([`DrivingParams`], `driving_params.rs`).
 
+mod driving;
+mod driving_params;
 mod generate;
 mod presets;
 mod sampling;
 mod write;
 
+pub use driving::{generate_driving_scene, CAR_ATTEMPTS, LAYOUT_ATTEMPTS};
+pub use driving_params::{DrivingParams, MAX_CARS};
 pub use generate::MAX_OBJECTS;
 pub use presets::{Preset, PresetParams};
 pub(crate) use sampling::{fundamental, uniform};

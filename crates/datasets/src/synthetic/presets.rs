@@ -1,7 +1,10 @@
 //! The named generator configurations (`sctl synth --preset`, the
 //! `preset` of a config's synthetic dataset) and their scene lists.
 
-use super::{generate_hopef_scene, BackgroundParams, SyntheticParams, SyntheticScene};
+use super::{
+    generate_driving_scene, generate_hopef_scene, BackgroundParams, DrivingParams, SyntheticParams,
+    SyntheticScene,
+};
 use crate::hopef_synth::{self, HopefParams};
 use crate::DatasetError;
 use serde::Serialize;
@@ -22,6 +25,14 @@ pub enum Preset {
     /// 1–4 × folders 0000–0999 (train 0000–0799, validation 0800–0899, test
     /// 0900–0999): 4000 scenes.
     Hopef,
+    /// `kitti-real`: driving scenes of real size ([`generate_driving_scene`]):
+    /// 1242 × 375 px, f ≈ 730 px, a background under forward ego-motion with
+    /// 60–75 % of the matches, 1–2 cars (categories 1 and 2) that turn 4–15°
+    /// and move sideways, each separable from the background and from the
+    /// other car, 10–15 % outliers, 0.7 px noise, N = 1000, 2000, 3000, 5000
+    /// by index mod 4; folders 0000–0999 split as HOPE-F's (train 0000–0799,
+    /// validation 0800–0899, test 0900–0999): 2000 scenes.
+    KittiReal,
 }
 
 /// The parameters of a preset's generator.
@@ -32,6 +43,8 @@ pub enum PresetParams {
     Synthetic(SyntheticParams),
     /// The HOPE-F-faithful generator ([`hopef_synth::generate_scene`]).
     Hopef(HopefParams),
+    /// The driving-scene generator ([`generate_driving_scene`]).
+    Driving(DrivingParams),
 }
 
 impl PresetParams {
@@ -41,6 +54,7 @@ impl PresetParams {
         match self {
             PresetParams::Synthetic(p) => p.validate(),
             PresetParams::Hopef(p) => p.validate(),
+            PresetParams::Driving(p) => p.validate(),
         }
     }
 
@@ -54,6 +68,7 @@ impl PresetParams {
         match self {
             PresetParams::Synthetic(p) => generate_hopef_scene(p, seed, category, index),
             PresetParams::Hopef(p) => hopef_synth::generate_scene(p, seed, category, index),
+            PresetParams::Driving(p) => generate_driving_scene(p, seed, category, index),
         }
     }
 
@@ -61,27 +76,30 @@ impl PresetParams {
     pub fn as_synthetic(&self) -> Option<&SyntheticParams> {
         match self {
             PresetParams::Synthetic(p) => Some(p),
-            PresetParams::Hopef(_) => None,
+            PresetParams::Hopef(_) | PresetParams::Driving(_) => None,
         }
     }
 }
 
 impl Preset {
     /// All presets.
-    pub const ALL: [Preset; 4] = [
+    pub const ALL: [Preset; 5] = [
         Preset::HopefLike,
         Preset::Quick,
         Preset::KittiLike,
         Preset::Hopef,
+        Preset::KittiReal,
     ];
 
-    /// The preset's name (`hopef-like`, `quick`, `kitti-like`, `hopef`).
+    /// The preset's name (`hopef-like`, `quick`, `kitti-like`, `hopef`,
+    /// `kitti-real`).
     pub fn name(self) -> &'static str {
         match self {
             Preset::HopefLike => "hopef-like",
             Preset::Quick => "quick",
             Preset::KittiLike => "kitti-like",
             Preset::Hopef => "hopef",
+            Preset::KittiReal => "kitti-real",
         }
     }
 
@@ -113,6 +131,7 @@ impl Preset {
                 ..SyntheticParams::default()
             },
             Preset::Hopef => return PresetParams::Hopef(HopefParams::default()),
+            Preset::KittiReal => return PresetParams::Driving(DrivingParams::default()),
         })
     }
 
@@ -131,6 +150,7 @@ impl Preset {
         match self.params() {
             PresetParams::Synthetic(_) => table.try_into().map(PresetParams::Synthetic),
             PresetParams::Hopef(_) => table.try_into().map(PresetParams::Hopef),
+            PresetParams::Driving(_) => table.try_into().map(PresetParams::Driving),
         }
     }
 
@@ -138,7 +158,7 @@ impl Preset {
     pub fn categories(self) -> Vec<u32> {
         match self {
             Preset::HopefLike | Preset::Hopef => vec![1, 2, 3, 4],
-            Preset::Quick | Preset::KittiLike => vec![1, 2],
+            Preset::Quick | Preset::KittiLike | Preset::KittiReal => vec![1, 2],
         }
     }
 
@@ -148,7 +168,7 @@ impl Preset {
             Preset::HopefLike => 900..=999,
             Preset::Quick => 900..=901,
             Preset::KittiLike => 900..=909,
-            Preset::Hopef => 0..=999,
+            Preset::Hopef | Preset::KittiReal => 0..=999,
         }
     }
 

@@ -38,6 +38,22 @@ pub(super) fn random_unit(rng: &mut ChaCha8Rng) -> Unit<Vector3<f64>> {
     }
 }
 
+/// A Gaussian 4-vector of standard deviation `sigma` per coordinate (the
+/// noise of a match `(x1, y1, x2, y2)`), redrawn while its length exceeds
+/// `truncation` σ (`truncation` 0: never redrawn).
+pub(super) fn truncated_noise(rng: &mut ChaCha8Rng, sigma: f64, truncation: f64) -> [f64; 4] {
+    let limit = truncation * sigma;
+    loop {
+        let v: [f64; 4] = std::array::from_fn(|_| {
+            let z: f64 = StandardNormal.sample(rng);
+            z * sigma
+        });
+        if limit == 0.0 || v.iter().map(|x| x * x).sum::<f64>() <= limit * limit {
+            return v;
+        }
+    }
+}
+
 /// A rotation about a random axis by an angle uniform in `degrees`.
 pub(super) fn random_rotation(rng: &mut ChaCha8Rng, degrees: [f64; 2]) -> Rotation3<f64> {
     let axis = random_unit(rng);
@@ -58,6 +74,12 @@ pub(crate) fn fundamental(
 ) -> Matrix3<f64> {
     let f = k_inv.transpose() * skew(t) * r * k_inv;
     f / f.norm()
+}
+
+/// `K = [[f, 0, cx], [0, f, cy], [0, 0, 1]]` (square pixels, no skew).
+pub(super) fn intrinsics(focal: f64, principal_point: [f64; 2]) -> Matrix3<f64> {
+    let [cx, cy] = principal_point;
+    Matrix3::new(focal, 0.0, cx, 0.0, focal, cy, 0.0, 0.0, 1.0)
 }
 
 /// The pixel of the camera-frame point `x` (`None` behind the camera).
@@ -168,6 +190,14 @@ impl Camera {
     /// Whether the pixel lies in the image (`0 ≤ x ≤ W−1`, `0 ≤ y ≤ H−1`).
     pub(super) fn inside(&self, p: [f64; 2]) -> bool {
         (0.0..=self.width - 1.0).contains(&p[0]) && (0.0..=self.height - 1.0).contains(&p[1])
+    }
+
+    /// A pixel uniform in the image (x first, then y).
+    pub(super) fn random_pixel(&self, rng: &mut ChaCha8Rng) -> [f64; 2] {
+        [
+            rng.gen_range(0.0..=self.width - 1.0),
+            rng.gen_range(0.0..=self.height - 1.0),
+        ]
     }
 
     /// The camera-frame point of `pixel` at `depth`.
