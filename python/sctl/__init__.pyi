@@ -114,6 +114,7 @@ def segment(
     implausible_focal: Literal["filter", "abstain"] = "filter",
     linkage: Literal["t-linkage", "j-linkage"] = "t-linkage",
     min_cluster_size: int = 8,
+    size_rule: Union[Literal["min-size", "largest-gap"], Dict[str, float]] = "min-size",
     final_assignment: Literal["none", "refit"] = "none",
 ) -> Segmentation:
     """Segments matches into rigid motions (T-Linkage of five-point

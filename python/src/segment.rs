@@ -61,6 +61,7 @@ use std::fmt::Write as _;
 ///     - implausible_focal = "filter"  (f_peak outside 0.3-3 x focal_prior: "filter" or "abstain")
 ///     - linkage = "t-linkage"       ("t-linkage" or "j-linkage")
 ///     - min_cluster_size = 8        (smaller clusters become outliers)
+///     - size_rule = "min-size"      ("min-size", "largest-gap" or {"relative-min": f})
 ///     - final_assignment = "none"   ("none", or "refit": refitted cluster models, nearest within thr_px)
 ///
 /// Returns

@@ -52,7 +52,7 @@ pub use input::{image_centre, Matches};
 pub use params::{
     EightPoint, FinalAssignment, FocalKey, FocalSolver, HypothesisKey, ImplausibleFocal, IrlsFit,
     Linkage, LocalTest, Method, MinimalSolutions, MinimalSolver, OnFailure, ParamError, Params,
-    Sampling, WeightPreset, WeightSets, PARAM_KEYS,
+    Sampling, SizeRule, WeightPreset, WeightSets, PARAM_KEYS,
 };
 pub use result::{
     ClusterModel, FocalVerdict, Hypothesis, HypothesisCounts, HypothesisStatus, Segmentation,

@@ -6,7 +6,7 @@
 //! choice where Table 1 has none). With the `serde` feature the struct reads
 //! from and writes to TOML/JSON under the same names, unknown keys refused.
 
-pub use clustering::Linkage;
+pub use clustering::{Linkage, SizeRule};
 use focal::FocalWeights;
 pub use focal::OnFailure;
 pub use geometry::IrlsFit;
@@ -185,6 +185,12 @@ pub struct Params {
     pub linkage: Linkage,
     /// Clusters with fewer points become outliers (step 9). Default 8.
     pub min_cluster_size: usize,
+    /// Which clusters step 9 keeps: `min-size` (`min_cluster_size` alone,
+    /// the thesis), `largest-gap` (T-Linkage's rule, Magri & Fusiello
+    /// 2014: sizes sorted, cut at the largest ratio of consecutive sizes) or
+    /// `{ relative-min = f }` (at least ⌈f N⌉ points); `min_cluster_size` is
+    /// a floor under each ([`clustering::SizeRule`]). Default `min-size`.
+    pub size_rule: SizeRule,
     /// After the size filter: `none` (the clustering's labels, the thesis)
     /// or `refit` (each cluster's F refitted by IRLS-Tukey on its points,
     /// then every match to the cluster of smallest Sampson distance within
@@ -243,6 +249,7 @@ impl Params {
             implausible_focal: ImplausibleFocal::Filter,
             linkage: Linkage::TLinkage,
             min_cluster_size: 8,
+            size_rule: SizeRule::MinSize,
             final_assignment: FinalAssignment::None,
             seed: 12345,
         }
@@ -250,7 +257,7 @@ impl Params {
 }
 
 /// The keys of [`Params`] in declaration order.
-pub const PARAM_KEYS: [&str; 27] = [
+pub const PARAM_KEYS: [&str; 28] = [
     "method",
     "num_samples",
     "mss_size",
@@ -276,6 +283,7 @@ pub const PARAM_KEYS: [&str; 27] = [
     "implausible_focal",
     "linkage",
     "min_cluster_size",
+    "size_rule",
     "final_assignment",
     "seed",
 ];
@@ -346,6 +354,14 @@ impl Params {
         }
         if self.max_iters == 0 {
             return Err(ParamError::new("max_iters", "must be at least 1"));
+        }
+        if let SizeRule::RelativeMin(f) = self.size_rule {
+            if !(0.0..=1.0).contains(&f) {
+                return Err(ParamError::new(
+                    "size_rule",
+                    format!("relative-min must be a fraction in [0, 1], got {f}"),
+                ));
+            }
         }
         self.validate_weight_sets()
     }

@@ -199,6 +199,7 @@ fn cluster_kept(
     let clustering_params = ClusteringParams {
         linkage: params.linkage,
         min_cluster_size: params.min_cluster_size,
+        size_rule: params.size_rule,
         ..ClusteringParams::default()
     };
 

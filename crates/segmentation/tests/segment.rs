@@ -509,6 +509,7 @@ fn the_defaults_keep_the_clusterings_labels() {
     let clustering_params = ClusteringParams {
         linkage: params.linkage,
         min_cluster_size: params.min_cluster_size,
+        ..ClusteringParams::default()
     };
     let mut builder = clustering_params
         .preference_builder(n, params.thr_px * params.thr_px)
@@ -554,4 +555,38 @@ fn localized_sampling_does_not_depend_on_the_thread_count() {
         assert_ne!(h1.models, uniform.models);
         assert!(me(&scene, &one) < 0.05, "ME {}", me(&scene, &one));
     }
+}
+
+#[test]
+fn a_size_rule_above_the_floor_only_removes_clusters() {
+    use segmentation::SizeRule;
+    let scene = quick_scene(2, 900);
+    let base = Params {
+        num_samples: 300,
+        ..Params::default()
+    };
+    let min_size = segment(&scene, &base).unwrap();
+    for rule in [SizeRule::LargestGap, SizeRule::RelativeMin(0.2)] {
+        let seg = segment(
+            &scene,
+            &Params {
+                size_rule: rule,
+                ..base.clone()
+            },
+        )
+        .unwrap();
+        assert!(seg.clusters.len() <= min_size.clusters.len(), "{rule:?}");
+        // A point is either where it was or an outlier now.
+        for (&a, &b) in min_size.labels.iter().zip(&seg.labels) {
+            assert!(b == -1 || a != -1, "{rule:?}");
+        }
+    }
+    let bad = Params {
+        size_rule: SizeRule::RelativeMin(1.5),
+        ..base
+    };
+    assert!(segment(&scene, &bad)
+        .unwrap_err()
+        .to_string()
+        .contains("`size_rule`"));
 }

@@ -55,6 +55,8 @@ EXPERIMENT FILE (TOML)
                                (keep every hypothesis: the baseline's labels)
   linkage = \"t-linkage\"        t-linkage | j-linkage
   min_cluster_size = 8         smaller clusters become outliers
+  size_rule = \"min-size\"       min-size | largest-gap (cut the sorted sizes at the
+                               largest ratio) | { relative-min = 0.01 } (>= f N points)
   final_assignment = \"none\"   none | refit (IRLS refit of each cluster, then
                                each match to its nearest model within thr_px)
   seed = 12345                 sampling seed

@@ -4,7 +4,8 @@
 use super::{parse_toml, ConfigError};
 use segmentation::{
     EightPoint, FinalAssignment, FocalSolver, ImplausibleFocal, IrlsFit, Linkage, LocalTest,
-    Method, MinimalSolutions, MinimalSolver, OnFailure, ParamError, Params, Sampling, WeightSets,
+    Method, MinimalSolutions, MinimalSolver, OnFailure, ParamError, Params, Sampling, SizeRule,
+    WeightSets,
 };
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -56,6 +57,7 @@ pub struct PipelineConfig {
     pub implausible_focal: ImplausibleFocal,
     pub linkage: Linkage,
     pub min_cluster_size: usize,
+    pub size_rule: SizeRule,
     pub final_assignment: FinalAssignment,
     /// The run's seed; scene `s` is segmented with the seed
     /// [`crate::pipeline::scene_seed`]`(seed, s)`, as in every committed result.
@@ -70,7 +72,7 @@ impl Default for PipelineConfig {
 
 /// The keys of [`PipelineConfig`] in declaration order: the order of the
 /// swept-parameter columns in every output file.
-pub const PIPELINE_KEYS: [&str; 28] = [
+pub const PIPELINE_KEYS: [&str; 29] = [
     "method",
     "num_samples",
     "mss_size",
@@ -97,6 +99,7 @@ pub const PIPELINE_KEYS: [&str; 28] = [
     "implausible_focal",
     "linkage",
     "min_cluster_size",
+    "size_rule",
     "final_assignment",
     "seed",
 ];
@@ -131,6 +134,7 @@ impl PipelineConfig {
             implausible_focal: p.implausible_focal,
             linkage: p.linkage,
             min_cluster_size: p.min_cluster_size,
+            size_rule: p.size_rule,
             final_assignment: p.final_assignment,
             seed: p.seed,
         }
@@ -164,6 +168,7 @@ impl PipelineConfig {
             implausible_focal: self.implausible_focal,
             linkage: self.linkage,
             min_cluster_size: self.min_cluster_size,
+            size_rule: self.size_rule,
             final_assignment: self.final_assignment,
             seed: self.seed,
         }

@@ -200,3 +200,23 @@ fn resolved_config_round_trips() {
     let again = parse(&c.to_toml()).unwrap();
     assert_eq!(c, again);
 }
+
+#[test]
+fn size_rule_reads_each_rule_and_rejects_a_bad_fraction() {
+    use segmentation::SizeRule;
+    for (text, rule) in [
+        ("\"min-size\"", SizeRule::MinSize),
+        ("\"largest-gap\"", SizeRule::LargestGap),
+        ("{ relative-min = 0.01 }", SizeRule::RelativeMin(0.01)),
+    ] {
+        let c = parse(&format!("{BASE}[pipeline]\nsize_rule = {text}\n")).unwrap();
+        assert_eq!(c.pipeline.size_rule, rule, "{text}");
+    }
+    let err = parse(&format!(
+        "{BASE}[pipeline]\nsize_rule = {{ relative-min = 2.0 }}\n"
+    ))
+    .unwrap_err()
+    .to_string();
+    assert!(err.contains("pipeline.size_rule"), "{err}");
+    assert!(parse(&format!("{BASE}[pipeline]\nsize_rule = \"gap\"\n")).is_err());
+}
