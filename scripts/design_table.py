@@ -31,7 +31,8 @@ def design_row(dataset, label, spec):
     run, _, filters = spec.partition(":")
     where = dict(f.split("=", 1) for f in filters.split(",") if f)
     rows = select(list(csv.DictReader(open(Path(run) / "per_scene.csv"))), where)
-    timings = select(list(csv.DictReader(open(Path(run) / "timings.csv"))), where)
+    all_timings = list(csv.DictReader(open(Path(run) / "timings.csv")))
+    timings = select(all_timings, where)
     if not rows:
         sys.exit(f"{run}: no row matches {where}")
     me = [100 * float(r["me"]) for r in rows if r["me"]]
@@ -41,7 +42,6 @@ def design_row(dataset, label, spec):
     judged = [r for r in rows if r.get("focal_verdict")]
     implausible = sum(r["focal_verdict"] == "implausible" for r in judged)
     seconds = [float(t["total_s"]) for t in timings]
-    all_timings = list(csv.DictReader(open(Path(run) / "timings.csv")))
     baseline = [
         float(t["total_s"])
         for t in all_timings
