@@ -37,7 +37,9 @@ use std::fmt::Write as _;
 ///     (``sctl.default_params()`` lists them):
 ///
 ///     - method = "baseline"         ("baseline": no focal filter, or "semical")
-///     - num_samples = 3000          (M, minimal samples drawn)
+///     - num_samples = 3000          (M, minimal samples drawn; the cap with adaptive_batch)
+///     - adaptive_batch = 0          (> 0: batches of this many until a batch gives fewer than adaptive_tolerance N points a better-supported hypothesis)
+///     - adaptive_tolerance = 0.01   (the adaptive stop rule's fraction of the points)
 ///     - mss_size = 8                (points per minimal sample)
 ///     - thr_px = 2.5                (inlier threshold, px; tau = thr_px**2)
 ///     - tau_diff = 0.05             (local test |f1 - f2| / f_avg < tau_diff)
@@ -63,6 +65,7 @@ use std::fmt::Write as _;
 ///     - min_cluster_size = 8        (smaller clusters become outliers)
 ///     - size_rule = "min-size"      ("min-size", "largest-gap" or {"relative-min": f})
 ///     - final_assignment = "none"   ("none", or "refit": refitted cluster models, nearest within thr_px)
+///     - max_memory_mb = 0           (> 0: refuse a clustering that would need more memory, MB)
 ///
 /// Returns
 /// -------

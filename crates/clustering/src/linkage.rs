@@ -115,36 +115,7 @@ pub(crate) const ROWS_PER_TASK: usize = 8;
 /// number of threads.
 pub(crate) fn agglomerate<S: AgglomerationState>(mut state: S, run_capacity: usize) -> Vec<Merge> {
     let n = state.n_clusters();
-    let capacity = run_capacity.max(1);
-    let blocks: Vec<Vec<(Vec<RunEntry>, Option<RunEntry>)>> = (0..n.div_ceil(ROWS_PER_TASK))
-        .into_par_iter()
-        .map_init(
-            || (Vec::new(), Vec::new()),
-            |(pairs, scratch), block| {
-                let rows = block * ROWS_PER_TASK..((block + 1) * ROWS_PER_TASK).min(n);
-                pairs.clear();
-                state.initial_distances(rows.clone(), pairs);
-                // The pairs come in row order: each row's are a contiguous run.
-                let mut rest = pairs.as_slice();
-                rows.map(|i| {
-                    let count = rest.iter().take_while(|p| p.0 as usize == i).count();
-                    let (row, tail) = rest.split_at(count);
-                    rest = tail;
-                    scratch.extend(
-                        row.iter()
-                            .map(|&(_, k, c)| RunEntry::new(c.d, k, 0, c.exact)),
-                    );
-                    PairHeap::truncate(scratch, capacity)
-                })
-                .collect()
-            },
-        )
-        .collect();
-    let mut heap = PairHeap::new(n, capacity);
-    for (i, (run, floor)) in blocks.into_iter().flatten().enumerate() {
-        heap.set_run(i, run, floor);
-    }
-
+    let mut heap = initial_heap(&state, run_capacity.max(1));
     let mut active = vec![true; n];
     let mut version = vec![0u32; n];
     let mut merges = Vec::new();
@@ -198,6 +169,42 @@ pub(crate) fn agglomerate<S: AgglomerationState>(mut state: S, run_capacity: usi
         heap.replace_run(i, version[i], run);
     }
     merges
+}
+
+/// The heap before the first merge: each point's candidate pairs to the
+/// later points (their initial distances, computed in parallel blocks of
+/// rows), truncated to `capacity` entries per run.
+fn initial_heap<S: AgglomerationState>(state: &S, capacity: usize) -> PairHeap {
+    let n = state.n_clusters();
+    let blocks: Vec<Vec<(Vec<RunEntry>, Option<RunEntry>)>> = (0..n.div_ceil(ROWS_PER_TASK))
+        .into_par_iter()
+        .map_init(
+            || (Vec::new(), Vec::new()),
+            |(pairs, scratch), block| {
+                let rows = block * ROWS_PER_TASK..((block + 1) * ROWS_PER_TASK).min(n);
+                pairs.clear();
+                state.initial_distances(rows.clone(), pairs);
+                // The pairs come in row order: each row's are a contiguous run.
+                let mut rest = pairs.as_slice();
+                rows.map(|i| {
+                    let count = rest.iter().take_while(|p| p.0 as usize == i).count();
+                    let (row, tail) = rest.split_at(count);
+                    rest = tail;
+                    scratch.extend(
+                        row.iter()
+                            .map(|&(_, k, c)| RunEntry::new(c.d, k, 0, c.exact)),
+                    );
+                    PairHeap::truncate(scratch, capacity)
+                })
+                .collect()
+            },
+        )
+        .collect();
+    let mut heap = PairHeap::new(n, capacity);
+    for (i, (run, floor)) in blocks.into_iter().flatten().enumerate() {
+        heap.set_run(i, run, floor);
+    }
+    heap
 }
 
 /// Refills the run of `owner` whose floor reached the top of the heap: its

@@ -43,5 +43,39 @@ pub enum SegmentationError {
     ExternalFocalsRequired,
     /// The clustering rejected its input.
     #[error("clustering: {0}")]
-    Clustering(#[from] ClusteringError),
+    Clustering(#[source] ClusteringError),
+    /// Clustering would need more memory than [`crate::Params::max_memory_mb`].
+    #[error(
+        "{n_points} matches x {n_hypotheses} hypotheses would need about {required_mb} MB \
+         to cluster, above max_memory_mb = {limit_mb}: lower num_samples or raise max_memory_mb"
+    )]
+    MemoryBound {
+        /// Matches N.
+        n_points: usize,
+        /// Hypotheses M.
+        n_hypotheses: usize,
+        /// The estimate of [`clustering::required_memory`], MB (rounded up).
+        required_mb: u64,
+        /// The bound, MB.
+        limit_mb: u64,
+    },
+}
+
+impl From<ClusteringError> for SegmentationError {
+    fn from(e: ClusteringError) -> Self {
+        match e {
+            ClusteringError::MemoryBound {
+                n_points,
+                n_hypotheses,
+                required,
+                limit,
+            } => SegmentationError::MemoryBound {
+                n_points,
+                n_hypotheses,
+                required_mb: required.div_ceil(1_000_000),
+                limit_mb: limit / 1_000_000,
+            },
+            other => SegmentationError::Clustering(other),
+        }
+    }
 }

@@ -1,11 +1,13 @@
 //! Steps 1–3 of Algorithm 1: minimal samples, their fits (8-point, or
 //! another minimal solver) and the IRLS-Tukey refinement of each.
 
+use crate::adaptive::{stop_after, SupportTracker};
 use crate::minimal::{candidates, choose};
 use crate::{EightPoint, Matches, MinimalSampler, MinimalSolver, Params, SegmentationError};
 use geometry::{eight_point_normalized, eight_point_plain, Correspondences, IrlsWorkspace};
 use nalgebra::Matrix3;
 use rayon::prelude::*;
+use std::ops::Range;
 use std::time::Instant;
 
 /// The hypotheses of steps 1–3 for one input. They depend only on the
@@ -64,7 +66,9 @@ pub fn centred_points(
 /// Steps 1–3 of Algorithm 1 (see [`GeneratedHypotheses`]): samples drawn
 /// by a [`MinimalSampler`] built once for the scene, hypotheses in
 /// parallel in the caller's rayon pool; the result does not depend on the
-/// number of threads.
+/// number of threads. With [`Params::adaptive_batch`] the samples come in
+/// batches until the stop rule of [`SupportTracker`] holds (its cost is
+/// counted in the refinement time).
 ///
 /// Errors on invalid parameters or camera fields, fewer points than
 /// `mss_size` and non-finite coordinates.
@@ -73,21 +77,37 @@ pub fn generate_hypotheses(
     params: &Params,
 ) -> Result<GeneratedHypotheses, SegmentationError> {
     let points = centred_points(matches, params)?;
-
-    let t = Instant::now();
     let sampler = MinimalSampler::new(matches.points1, params.sampling, params.sample_size());
-    let fits = match params.minimal_solver {
-        MinimalSolver::EightPoint => fit_minimal_samples(&points, &sampler, params),
-        _ => solve_minimal_samples(&points, &sampler, params, matches.focal_prior),
+    let batch = match params.adaptive_batch {
+        0 => params.num_samples,
+        b => b,
     };
-    let sampling_seconds = t.elapsed().as_secs_f64();
+    let mut tracker =
+        (params.adaptive_batch > 0).then(|| SupportTracker::new(points.len(), params.thr_px));
+    let (mut fitted, mut models) = (Vec::new(), Vec::new());
+    let (mut sampling_seconds, mut refine_seconds) = (0.0, 0.0);
+    for (b, start) in (0..params.num_samples).step_by(batch).enumerate() {
+        let samples = start..(start + batch).min(params.num_samples);
+        let t = Instant::now();
+        let fits = match params.minimal_solver {
+            MinimalSolver::EightPoint => fit_minimal_samples(&points, &sampler, samples, params),
+            _ => solve_minimal_samples(&points, &sampler, samples, params, matches.focal_prior),
+        };
+        sampling_seconds += t.elapsed().as_secs_f64();
 
-    let t = Instant::now();
-    let models = refine_fits(&points, &fits, params);
-    let refine_seconds = t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let refined = refine_fits(&points, &fits, params);
+        let gained = tracker.as_mut().map(|t| t.add_batch(&points, &refined));
+        refine_seconds += t.elapsed().as_secs_f64();
+        fitted.extend(fits.iter().map(Option::is_some));
+        models.extend(refined);
+        if gained.is_some_and(|g| stop_after(b, g, points.len(), params.adaptive_tolerance)) {
+            break;
+        }
+    }
     Ok(GeneratedHypotheses {
-        fitted: fits.iter().map(Option::is_some).collect(),
         points,
+        fitted,
         models,
         sampling_seconds,
         refine_seconds,
@@ -107,9 +127,10 @@ struct SampleFit {
 fn fit_minimal_samples(
     points: &Correspondences,
     sampler: &MinimalSampler,
+    samples: Range<usize>,
     params: &Params,
 ) -> Vec<Option<SampleFit>> {
-    (0..params.num_samples)
+    samples
         .into_par_iter()
         .map(|j| {
             let sample = sampler.sample(params.seed, j, params.mss_size);
@@ -133,11 +154,12 @@ fn fit_minimal_samples(
 fn solve_minimal_samples(
     points: &Correspondences,
     sampler: &MinimalSampler,
+    samples: Range<usize>,
     params: &Params,
     focal: f64,
 ) -> Vec<Option<SampleFit>> {
     let size = params.sample_size();
-    let per_sample: Vec<Vec<Option<SampleFit>>> = (0..params.num_samples)
+    let per_sample: Vec<Vec<Option<SampleFit>>> = samples
         .into_par_iter()
         .map(|j| {
             let sample = sampler.sample(params.seed, j, size);

@@ -8,7 +8,8 @@
 //! and outliers (−1):
 //!
 //! 1. M minimal samples, drawn per hypothesis from its own random stream,
-//!    uniformly ([`minimal_sample`]) or localized ([`MinimalSampler`]);
+//!    uniformly ([`minimal_sample`]) or localized ([`MinimalSampler`]),
+//!    M fixed or adaptive ([`SupportTracker`]);
 //! 2. the 8-point F of each (Hartley-normalised or plain, [`EightPoint`]);
 //! 3. IRLS-Tukey refinement ([`generate_hypotheses`]);
 //! 4. focal lengths of each F ([`estimate_hypothesis_focals`]: the robust
@@ -27,6 +28,7 @@
 //! parameters and [`Params::seed`] only, not on the number of threads
 //! (hypotheses are computed in the caller's rayon pool).
 
+mod adaptive;
 mod assignment;
 mod error;
 mod filter;
@@ -35,11 +37,14 @@ mod hypotheses;
 mod input;
 mod minimal;
 mod params;
+mod profile;
 mod result;
 mod sampling;
 mod segment;
 mod variants;
+mod weight_sets;
 
+pub use adaptive::{SupportTracker, SUPPORT_GAIN};
 pub use assignment::reassign;
 pub use error::SegmentationError;
 pub use filter::{focal_filter, focal_verdict, FilterOutcome, PLAUSIBLE_FOCAL_RANGE};
@@ -54,6 +59,7 @@ pub use params::{
     Linkage, LocalTest, Method, MinimalSolutions, MinimalSolver, OnFailure, ParamError, Params,
     Sampling, SizeRule, WeightPreset, WeightSets, PARAM_KEYS,
 };
+pub use profile::Profile;
 pub use result::{
     ClusterModel, FocalVerdict, Hypothesis, HypothesisCounts, HypothesisStatus, Segmentation,
     StageTimings,

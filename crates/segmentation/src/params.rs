@@ -7,7 +7,6 @@
 //! from and writes to TOML/JSON under the same names, unknown keys refused.
 
 pub use clustering::{Linkage, SizeRule};
-use focal::FocalWeights;
 pub use focal::OnFailure;
 pub use geometry::IrlsFit;
 use geometry::IrlsParams;
@@ -17,54 +16,7 @@ pub use crate::variants::{
     EightPoint, FinalAssignment, FocalSolver, ImplausibleFocal, LocalTest, Method,
     MinimalSolutions, MinimalSolver, Sampling,
 };
-
-/// A named list of multi-start weight sets for the robust focal solver.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(rename_all = "kebab-case")
-)]
-pub enum WeightPreset {
-    /// The reference code's four AdelaideRMF sets.
-    Adelaidermf,
-    /// The reference code's six HOPE-F sets.
-    Hopef,
-}
-
-/// Multi-start weight sets `(w_f1, w_pp1, w_f2, w_pp2)` of the robust focal
-/// solver (method.md step 4): a preset name or an explicit list. Serialised
-/// as `"adelaidermf"`, `"hopef"` or a list of `[w_f1, w_pp1, w_f2, w_pp2]`.
-#[derive(Debug, Clone, PartialEq)]
-pub enum WeightSets {
-    /// One of the reference code's lists.
-    Preset(WeightPreset),
-    /// An explicit list of `[w_f1, w_pp1, w_f2, w_pp2]`.
-    Explicit(Vec<[f64; 4]>),
-}
-
-impl WeightSets {
-    /// The weight sets: [`focal::ADELAIDE_WEIGHT_SETS`],
-    /// [`focal::HOPEF_WEIGHT_SETS`] or the explicit list.
-    pub fn sets(&self) -> Vec<FocalWeights> {
-        match self {
-            WeightSets::Preset(WeightPreset::Adelaidermf) => focal::ADELAIDE_WEIGHT_SETS.to_vec(),
-            WeightSets::Preset(WeightPreset::Hopef) => focal::HOPEF_WEIGHT_SETS.to_vec(),
-            WeightSets::Explicit(sets) => sets
-                .iter()
-                .map(|&[f1, pp1, f2, pp2]| FocalWeights::new(f1, pp1, f2, pp2))
-                .collect(),
-        }
-    }
-
-    /// The weights as plain numbers, for hashing and comparing parameter sets.
-    fn key(&self) -> Vec<[u64; 4]> {
-        self.sets()
-            .iter()
-            .map(|w| [w.f1, w.pp1, w.f2, w.pp2].map(f64::to_bits))
-            .collect()
-    }
-}
+pub use crate::weight_sets::{WeightPreset, WeightSets};
 
 /// Every parameter of Algorithm 1 (method.md "Parameters" and the switches
 /// between the thesis text and the reference code).
@@ -102,6 +54,16 @@ pub struct Params {
     pub method: Method,
     /// M, the number of minimal sample sets drawn (step 1). Table 1: 3000.
     pub num_samples: usize,
+    /// Adaptive M (step 1): `0` draws all `num_samples` samples; `B > 0`
+    /// draws them in batches of B and stops after the first batch, from the
+    /// second on, in which fewer than `adaptive_tolerance · N` points gained
+    /// a better-supported hypothesis ([`crate::SupportTracker`]); at most
+    /// `num_samples` in all. The hypotheses drawn are the first ones of the
+    /// fixed-M run. Default 0 (fixed M, the thesis).
+    pub adaptive_batch: usize,
+    /// The adaptive stop rule's tolerance, a fraction of the points in
+    /// `[0, 1]`. Default 0.01.
+    pub adaptive_tolerance: f64,
     /// Correspondences per minimal sample set (step 1). Table 1: 8.
     pub mss_size: usize,
     /// Inlier threshold in pixels: IRLS inlier bound `thr_px²` (step 3e) and
@@ -200,6 +162,13 @@ pub struct Params {
     /// clustering (Barath et al., CVPR 2023) end ([`crate::reassign`]).
     /// Default `none`.
     pub final_assignment: FinalAssignment,
+    /// Memory bound of the preferences and the clustering (steps 7–8), MB
+    /// (10⁶ bytes; [`clustering::required_memory`]). With a bound the
+    /// segmentation stops before drawing a sample when N points and
+    /// `num_samples` hypotheses would need more at 20 % non-zero
+    /// preferences, and before clustering when the preferences' real
+    /// density does. `0`: no bound. Default 0.
+    pub max_memory_mb: u64,
     /// Seed of the hypothesis sampling: hypothesis `j` draws from ChaCha8
     /// stream `j` under a key expanded from the seed ([`crate::hypothesis_rng`]),
     /// so the labels depend on the seed and the input only. Default 12345
@@ -226,6 +195,8 @@ impl Params {
         Self {
             method: Method::Semical,
             num_samples: 3000,
+            adaptive_batch: 0,
+            adaptive_tolerance: 0.01,
             mss_size: 8,
             thr_px: 2.5,
             tau_diff: 0.05,
@@ -251,15 +222,18 @@ impl Params {
             min_cluster_size: 8,
             size_rule: SizeRule::MinSize,
             final_assignment: FinalAssignment::None,
+            max_memory_mb: 0,
             seed: 12345,
         }
     }
 }
 
 /// The keys of [`Params`] in declaration order.
-pub const PARAM_KEYS: [&str; 28] = [
+pub const PARAM_KEYS: [&str; 31] = [
     "method",
     "num_samples",
+    "adaptive_batch",
+    "adaptive_tolerance",
     "mss_size",
     "thr_px",
     "tau_diff",
@@ -285,6 +259,7 @@ pub const PARAM_KEYS: [&str; 28] = [
     "min_cluster_size",
     "size_rule",
     "final_assignment",
+    "max_memory_mb",
     "seed",
 ];
 
@@ -322,6 +297,15 @@ impl Params {
         }
         if self.num_samples == 0 {
             return Err(ParamError::new("num_samples", "must be at least 1"));
+        }
+        if !(0.0..=1.0).contains(&self.adaptive_tolerance) {
+            return Err(ParamError::new(
+                "adaptive_tolerance",
+                format!(
+                    "must be a fraction in [0, 1], got {}",
+                    self.adaptive_tolerance
+                ),
+            ));
         }
         if self.mss_size < 8 {
             return Err(ParamError::new(
@@ -392,6 +376,8 @@ impl Params {
         HypothesisKey {
             seed: self.seed,
             num_samples: self.num_samples,
+            adaptive_batch: self.adaptive_batch,
+            adaptive_tolerance_bits: self.adaptive_tolerance.to_bits(),
             mss_size: self.mss_size,
             eight_point: self.eight_point,
             minimal_solver: self.minimal_solver,
@@ -444,6 +430,8 @@ impl Params {
 pub struct HypothesisKey {
     seed: u64,
     num_samples: usize,
+    adaptive_batch: usize,
+    adaptive_tolerance_bits: u64,
     mss_size: usize,
     eight_point: EightPoint,
     minimal_solver: MinimalSolver,
@@ -466,54 +454,6 @@ pub struct FocalKey {
     max_iters: usize,
     failure: OnFailure,
     truncate: bool,
-}
-
-#[cfg(feature = "serde")]
-mod weight_sets_serde {
-    use super::{WeightPreset, WeightSets};
-    use serde::de::{self, Deserializer, SeqAccess, Visitor};
-    use serde::{Deserialize, Serialize, Serializer};
-    use std::fmt;
-
-    impl Serialize for WeightSets {
-        fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-            match self {
-                WeightSets::Preset(preset) => preset.serialize(serializer),
-                WeightSets::Explicit(sets) => sets.serialize(serializer),
-            }
-        }
-    }
-
-    struct WeightSetsVisitor;
-
-    impl<'de> Visitor<'de> for WeightSetsVisitor {
-        type Value = WeightSets;
-        fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-            f.write_str(
-                "`adelaidermf`, `hopef` or a list of [w_f1, w_pp1, w_f2, w_pp2] weight sets",
-            )
-        }
-        fn visit_str<E: de::Error>(self, v: &str) -> Result<WeightSets, E> {
-            match v {
-                "adelaidermf" => Ok(WeightSets::Preset(WeightPreset::Adelaidermf)),
-                "hopef" => Ok(WeightSets::Preset(WeightPreset::Hopef)),
-                other => Err(E::invalid_value(de::Unexpected::Str(other), &self)),
-            }
-        }
-        fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<WeightSets, A::Error> {
-            let mut sets = Vec::new();
-            while let Some(set) = seq.next_element::<[f64; 4]>()? {
-                sets.push(set);
-            }
-            Ok(WeightSets::Explicit(sets))
-        }
-    }
-
-    impl<'de> Deserialize<'de> for WeightSets {
-        fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-            deserializer.deserialize_any(WeightSetsVisitor)
-        }
-    }
 }
 
 #[cfg(test)]

@@ -38,6 +38,12 @@ use std::time::Instant;
 /// ```
 pub fn segment(matches: &Matches, params: &Params) -> Result<Segmentation, SegmentationError> {
     let started = Instant::now();
+    params.validate()?;
+    clustering_params(params).check_memory(
+        matches.len(),
+        params.num_samples,
+        ASSUMED_PREFERENCE_DENSITY,
+    )?;
     let hypotheses = generate_hypotheses(matches, params)?;
     let focals = (params.method == Method::Semical)
         .then(|| estimate_hypothesis_focals(&hypotheses, params, matches.focal_prior))
@@ -139,10 +145,13 @@ fn check_stages(
     // several hypotheses; otherwise there is one per sample.
     let one_per_sample = params.minimal_solver == MinimalSolver::EightPoint
         || params.minimal_solutions == MinimalSolutions::Best;
-    let m_matches = if one_per_sample {
-        m == params.num_samples
-    } else {
-        m >= params.num_samples
+    // Adaptive M stops after some batch: at least one sample, at most M
+    // (one per sample).
+    let m_matches = match (one_per_sample, params.adaptive_batch > 0) {
+        (true, false) => m == params.num_samples,
+        (true, true) => (1..=params.num_samples).contains(&m),
+        (false, false) => m >= params.num_samples,
+        (false, true) => m >= 1,
     };
     if n != matches.len() || !m_matches {
         return Err(SegmentationError::StageMismatch(format!(
@@ -196,12 +205,7 @@ fn cluster_kept(
     params: &Params,
 ) -> Result<(), SegmentationError> {
     let points = &generated.points;
-    let clustering_params = ClusteringParams {
-        linkage: params.linkage,
-        min_cluster_size: params.min_cluster_size,
-        size_rule: params.size_rule,
-        ..ClusteringParams::default()
-    };
+    let clustering_params = clustering_params(params);
 
     // Step 7: preferences, one hypothesis (column) at a time.
     let t = Instant::now();
@@ -217,7 +221,7 @@ fn cluster_kept(
 
     // Steps 8–9: linkage and size filter.
     let t = Instant::now();
-    let clustering = clustering_params.cluster(&preferences);
+    let clustering = clustering_params.try_cluster(&preferences)?;
     drop(preferences);
     segmentation.timings.clustering = t.elapsed().as_secs_f64();
 
@@ -240,6 +244,21 @@ fn cluster_kept(
     segmentation.clusters_before_filter = clustering.clusters_before_filter;
     segmentation.labels = labels;
     Ok(())
+}
+
+/// The share of non-zero preferences assumed by the memory check made
+/// before sampling: F hypotheses at `thr_px` 2–3 px give 5–20 %.
+const ASSUMED_PREFERENCE_DENSITY: f64 = 0.2;
+
+/// The clustering's parameters: linkage, size filter and the memory bound
+/// [`Params::max_memory_mb`].
+fn clustering_params(params: &Params) -> ClusteringParams {
+    ClusteringParams {
+        linkage: params.linkage,
+        min_cluster_size: params.min_cluster_size,
+        size_rule: params.size_rule,
+        max_memory_bytes: (params.max_memory_mb > 0).then(|| params.max_memory_mb * 1_000_000),
+    }
 }
 
 /// The 8-point F of each cluster `0..clusters` of `labels`, by label.

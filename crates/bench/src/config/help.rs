@@ -27,7 +27,11 @@ EXPERIMENT FILE (TOML)
                                filter; the thesis text: method = \"semical\",
                                minimal_solver = \"eight-point\"; Table 1 values)
   method = \"baseline\"          baseline (no focal filter) | semical (Algorithm 1)
-  num_samples = 3000           M, minimal samples per scene
+  num_samples = 3000           M, minimal samples per scene (at most, adaptive)
+  adaptive_batch = 0           > 0: draw M in batches of this many until a batch
+                               gives fewer than adaptive_tolerance N points a
+                               better-supported hypothesis (0: fixed M)
+  adaptive_tolerance = 0.01    the adaptive stop rule's fraction of the points
   mss_size = 8                 points per minimal sample
   thr_px = 2.5                 inlier threshold (px); tau = thr_px^2 (Eq. 38)
   tau_diff = 0.05              local test |f1-f2|/f_avg < tau_diff (Eq. 36)
@@ -59,6 +63,8 @@ EXPERIMENT FILE (TOML)
                                largest ratio) | { relative-min = 0.01 } (>= f N points)
   final_assignment = \"none\"   none | refit (IRLS refit of each cluster, then
                                each match to its nearest model within thr_px)
+  max_memory_mb = 0            > 0: refuse (at once) a scene whose clustering
+                               would need more memory (MB); 0: no bound
   seed = 12345                 sampling seed
 
   [sweep]                      any [pipeline] key as a list; the run is the

@@ -27,6 +27,8 @@ use std::path::Path;
 pub struct PipelineConfig {
     pub method: Method,
     pub num_samples: usize,
+    pub adaptive_batch: usize,
+    pub adaptive_tolerance: f64,
     pub mss_size: usize,
     pub thr_px: f64,
     pub tau_diff: f64,
@@ -59,6 +61,7 @@ pub struct PipelineConfig {
     pub min_cluster_size: usize,
     pub size_rule: SizeRule,
     pub final_assignment: FinalAssignment,
+    pub max_memory_mb: u64,
     /// The run's seed; scene `s` is segmented with the seed
     /// [`crate::pipeline::scene_seed`]`(seed, s)`, as in every committed result.
     pub seed: u64,
@@ -72,9 +75,11 @@ impl Default for PipelineConfig {
 
 /// The keys of [`PipelineConfig`] in declaration order: the order of the
 /// swept-parameter columns in every output file.
-pub const PIPELINE_KEYS: [&str; 29] = [
+pub const PIPELINE_KEYS: [&str; 32] = [
     "method",
     "num_samples",
+    "adaptive_batch",
+    "adaptive_tolerance",
     "mss_size",
     "thr_px",
     "tau_diff",
@@ -101,6 +106,7 @@ pub const PIPELINE_KEYS: [&str; 29] = [
     "min_cluster_size",
     "size_rule",
     "final_assignment",
+    "max_memory_mb",
     "seed",
 ];
 
@@ -110,6 +116,8 @@ impl PipelineConfig {
         Self {
             method: p.method,
             num_samples: p.num_samples,
+            adaptive_batch: p.adaptive_batch,
+            adaptive_tolerance: p.adaptive_tolerance,
             mss_size: p.mss_size,
             thr_px: p.thr_px,
             tau_diff: p.tau_diff,
@@ -136,6 +144,7 @@ impl PipelineConfig {
             min_cluster_size: p.min_cluster_size,
             size_rule: p.size_rule,
             final_assignment: p.final_assignment,
+            max_memory_mb: p.max_memory_mb,
             seed: p.seed,
         }
     }
@@ -145,6 +154,8 @@ impl PipelineConfig {
         Params {
             method: self.method,
             num_samples: self.num_samples,
+            adaptive_batch: self.adaptive_batch,
+            adaptive_tolerance: self.adaptive_tolerance,
             mss_size: self.mss_size,
             thr_px: self.thr_px,
             tau_diff: self.tau_diff,
@@ -170,6 +181,7 @@ impl PipelineConfig {
             min_cluster_size: self.min_cluster_size,
             size_rule: self.size_rule,
             final_assignment: self.final_assignment,
+            max_memory_mb: self.max_memory_mb,
             seed: self.seed,
         }
     }

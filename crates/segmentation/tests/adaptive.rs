@@ -1,0 +1,139 @@
+//! Adaptive M, the memory bound and the profiles on synthetic scenes of the
+//! `quick` preset.
+
+use datasets::synthetic::Preset;
+use datasets::Scene;
+use segmentation::{
+    generate_hypotheses, segment, Matches, Params, Profile, SegmentationError, SupportTracker,
+};
+
+fn quick_scene(category: u32, index: u32) -> Scene {
+    Preset::Quick
+        .params()
+        .generate_scene(1, category, index)
+        .unwrap()
+        .scene
+}
+
+fn matches(scene: &Scene) -> Matches<'_> {
+    Matches::new(&scene.points1, &scene.points2, scene.image_size)
+        .with_principal_point(scene.principal_point)
+}
+
+fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+        .install(f)
+}
+
+fn adaptive(batch: usize, tolerance: f64) -> Params {
+    Params {
+        num_samples: 600,
+        adaptive_batch: batch,
+        adaptive_tolerance: tolerance,
+        ..Params::default()
+    }
+}
+
+#[test]
+fn adaptive_hypotheses_are_the_first_ones_of_the_fixed_run() {
+    let scene = quick_scene(2, 900);
+    let fixed = generate_hypotheses(&matches(&scene), &adaptive(0, 0.01)).unwrap();
+    assert_eq!(fixed.models.len(), 600);
+    // A tolerance of 1 stops after the second batch, 0 never stops early.
+    for (tolerance, expected) in [(1.0, 200), (0.0, 600)] {
+        let params = adaptive(100, tolerance);
+        let generated = generate_hypotheses(&matches(&scene), &params).unwrap();
+        assert_eq!(generated.models.len(), expected, "tolerance {tolerance}");
+        assert_eq!(generated.models[..], fixed.models[..expected]);
+        assert_eq!(generated.fitted[..], fixed.fitted[..expected]);
+    }
+}
+
+#[test]
+fn the_stop_rule_is_the_support_trackers() {
+    // Replays the batches through a tracker: the run stops after the first
+    // batch (from the second on) in which fewer than tolerance N points
+    // gained, and not before.
+    let scene = quick_scene(2, 901);
+    let params = adaptive(50, 0.05);
+    let generated = generate_hypotheses(&matches(&scene), &params).unwrap();
+    let m = generated.models.len();
+    assert!(
+        m < 600,
+        "the quick scene should settle before the cap, got {m}"
+    );
+    let n = generated.points.len();
+    let mut tracker = SupportTracker::new(n, params.thr_px);
+    let batches: Vec<_> = generated.models.chunks(50).collect();
+    for (b, batch) in batches.iter().enumerate() {
+        let gained = tracker.add_batch(&generated.points, batch);
+        let stops = b >= 1 && (gained as f64) < 0.05 * n as f64;
+        assert_eq!(stops, b + 1 == batches.len(), "batch {b}: {gained} gained");
+    }
+}
+
+#[test]
+fn adaptive_labels_do_not_depend_on_the_thread_count() {
+    let scene = quick_scene(2, 900);
+    let params = adaptive(50, 0.02);
+    let one = in_pool(1, || segment(&matches(&scene), &params).unwrap());
+    let two = in_pool(2, || segment(&matches(&scene), &params).unwrap());
+    assert_eq!(one.labels, two.labels);
+    assert_eq!(one.counts.generated, two.counts.generated);
+}
+
+#[test]
+fn a_memory_bound_refuses_before_sampling_and_names_the_key() {
+    let scene = quick_scene(1, 900);
+    let params = Params {
+        max_memory_mb: 1,
+        num_samples: 20_000,
+        ..Params::default()
+    };
+    let err = segment(&matches(&scene), &params).unwrap_err();
+    let SegmentationError::MemoryBound {
+        n_points,
+        n_hypotheses,
+        required_mb,
+        limit_mb,
+    } = &err
+    else {
+        panic!("expected a memory bound error, got {err}");
+    };
+    assert_eq!(
+        (*n_points, *n_hypotheses, *limit_mb),
+        (scene.points1.len(), 20_000, 1)
+    );
+    assert!(*required_mb > 1);
+    assert!(err.to_string().contains("max_memory_mb = 1"), "{err}");
+    // A bound above the need changes nothing.
+    let roomy = Params {
+        max_memory_mb: 10_000,
+        num_samples: 300,
+        ..Params::default()
+    };
+    let unbounded = Params {
+        max_memory_mb: 0,
+        ..roomy.clone()
+    };
+    let a = segment(&matches(&scene), &roomy).unwrap();
+    let b = segment(&matches(&scene), &unbounded).unwrap();
+    assert_eq!(a.labels, b.labels);
+}
+
+#[test]
+fn every_profile_segments_a_synthetic_scene() {
+    let scene = quick_scene(2, 900);
+    for profile in Profile::ALL {
+        let params = Params {
+            num_samples: 300,
+            ..profile.params()
+        };
+        let seg = segment(&matches(&scene), &params).unwrap();
+        assert_eq!(seg.labels.len(), scene.points1.len(), "{profile:?}");
+        assert!(seg.labels.iter().any(|&l| l >= 0), "{profile:?}");
+    }
+}
