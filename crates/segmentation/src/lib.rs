@@ -55,9 +55,9 @@ pub use focals::{
 pub use hypotheses::{centred_points, generate_hypotheses, GeneratedHypotheses};
 pub use input::{image_centre, Matches};
 pub use params::{
-    EightPoint, FinalAssignment, FocalKey, FocalSolver, HypothesisKey, ImplausibleFocal, IrlsFit,
-    Linkage, LocalTest, Method, MinimalSolutions, MinimalSolver, OnFailure, ParamError, Params,
-    Sampling, SizeRule, WeightPreset, WeightSets, PARAM_KEYS,
+    DuplicateFilter, EightPoint, FinalAssignment, FocalKey, FocalSolver, HypothesisKey,
+    ImplausibleFocal, IrlsFit, Linkage, LocalTest, Method, MinimalSolutions, MinimalSolver,
+    OnFailure, ParamError, Params, Sampling, SizeRule, WeightPreset, WeightSets, PARAM_KEYS,
 };
 pub use profile::Profile;
 pub use result::{

@@ -13,7 +13,7 @@ use geometry::IrlsParams;
 use thiserror::Error;
 
 pub use crate::variants::{
-    EightPoint, FinalAssignment, FocalSolver, ImplausibleFocal, LocalTest, Method,
+    DuplicateFilter, EightPoint, FinalAssignment, FocalSolver, ImplausibleFocal, LocalTest, Method,
     MinimalSolutions, MinimalSolver, Sampling,
 };
 pub use crate::weight_sets::{WeightPreset, WeightSets};
@@ -162,6 +162,10 @@ pub struct Params {
     /// clustering (Barath et al., CVPR 2023) end ([`crate::reassign`]).
     /// Default `none`.
     pub final_assignment: FinalAssignment,
+    /// Which kept hypotheses enter the preferences (step 7): `none` (all,
+    /// the thesis) or `same-inliers` (one per distinct inlier set,
+    /// [`DuplicateFilter`]). Default `none`.
+    pub duplicate_filter: DuplicateFilter,
     /// Memory bound of the preferences and the clustering (steps 7–8), MB
     /// (10⁶ bytes; [`clustering::required_memory`]). With a bound the
     /// segmentation stops before drawing a sample when N points and
@@ -222,6 +226,7 @@ impl Params {
             min_cluster_size: 8,
             size_rule: SizeRule::MinSize,
             final_assignment: FinalAssignment::None,
+            duplicate_filter: DuplicateFilter::None,
             max_memory_mb: 0,
             seed: 12345,
         }
@@ -229,7 +234,7 @@ impl Params {
 }
 
 /// The keys of [`Params`] in declaration order.
-pub const PARAM_KEYS: [&str; 31] = [
+pub const PARAM_KEYS: [&str; 32] = [
     "method",
     "num_samples",
     "adaptive_batch",
@@ -259,6 +264,7 @@ pub const PARAM_KEYS: [&str; 31] = [
     "min_cluster_size",
     "size_rule",
     "final_assignment",
+    "duplicate_filter",
     "max_memory_mb",
     "seed",
 ];

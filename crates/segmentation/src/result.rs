@@ -18,6 +18,9 @@ pub enum HypothesisStatus {
     LocalTestFailed,
     /// Its `f_avg` lies outside the band around f_peak (Eq. 37).
     OutsideBand,
+    /// Its inlier set equals an earlier kept hypothesis's
+    /// (`duplicate_filter = "same-inliers"`, step 7).
+    Duplicate,
     /// It reached the clustering.
     Kept,
 }
@@ -31,6 +34,7 @@ impl HypothesisStatus {
             Self::FocalFailed => "focal-failed",
             Self::LocalTestFailed => "local-test-failed",
             Self::OutsideBand => "outside-band",
+            Self::Duplicate => "duplicate",
             Self::Kept => "kept",
         }
     }

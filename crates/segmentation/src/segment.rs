@@ -3,13 +3,14 @@
 
 use crate::{
     estimate_hypothesis_focals, focal_filter, generate_hypotheses, reassign, ClusterModel,
-    FinalAssignment, FocalVerdict, GeneratedHypotheses, Hypothesis, HypothesisCounts,
-    HypothesisFocals, HypothesisStatus, Matches, Method, MinimalSolutions, MinimalSolver, Params,
-    Segmentation, SegmentationError, StageTimings,
+    DuplicateFilter, FinalAssignment, FocalVerdict, GeneratedHypotheses, Hypothesis,
+    HypothesisCounts, HypothesisFocals, HypothesisStatus, Matches, Method, MinimalSolutions,
+    MinimalSolver, Params, Segmentation, SegmentationError, StageTimings,
 };
 use clustering::ClusteringParams;
 use geometry::{eight_point_normalized, sampson_distances_squared, Correspondences};
 use nalgebra::Matrix3;
+use std::collections::HashSet;
 use std::time::Instant;
 
 /// Segments `matches` by Algorithm 1 (method.md steps 1–9) with `params`.
@@ -212,8 +213,17 @@ fn cluster_kept(
     let tau = params.thr_px * params.thr_px;
     let mut builder = clustering_params.preference_builder(points.len(), tau)?;
     let mut residuals = vec![0.0; points.len()];
-    for model in kept.iter().filter_map(|&j| generated.models[j].as_ref()) {
+    let mut seen = InlierSets::new(params.duplicate_filter, tau);
+    for &j in kept {
+        let Some(model) = generated.models[j].as_ref() else {
+            continue;
+        };
         sampson_distances_squared(model, points, &mut residuals);
+        if seen.is_duplicate(&residuals) {
+            segmentation.hypotheses[j].status = HypothesisStatus::Duplicate;
+            segmentation.counts.kept -= 1;
+            continue;
+        }
         builder.push_residuals(&residuals)?;
     }
     let preferences = builder.finish();
@@ -244,6 +254,40 @@ fn cluster_kept(
     segmentation.clusters_before_filter = clustering.clusters_before_filter;
     segmentation.labels = labels;
     Ok(())
+}
+
+/// The inlier sets (`r ≤ tau`) of the hypotheses pushed so far, for
+/// [`DuplicateFilter::SameInliers`]; with [`DuplicateFilter::None`] nothing
+/// is a duplicate.
+struct InlierSets {
+    filter: DuplicateFilter,
+    tau: f64,
+    seen: HashSet<Vec<u64>>,
+}
+
+impl InlierSets {
+    fn new(filter: DuplicateFilter, tau: f64) -> Self {
+        Self {
+            filter,
+            tau,
+            seen: HashSet::new(),
+        }
+    }
+
+    /// Whether the inlier set of `residuals` was seen before (it is
+    /// recorded when not).
+    fn is_duplicate(&mut self, residuals: &[f64]) -> bool {
+        if self.filter == DuplicateFilter::None {
+            return false;
+        }
+        let mut bits = vec![0u64; residuals.len().div_ceil(64)];
+        for (i, &r) in residuals.iter().enumerate() {
+            if r <= self.tau {
+                bits[i / 64] |= 1 << (i % 64);
+            }
+        }
+        !self.seen.insert(bits)
+    }
 }
 
 /// The share of non-zero preferences assumed by the memory check made

@@ -173,3 +173,20 @@ pub enum FinalAssignment {
     /// clustering (Barath et al., CVPR 2023) end ([`crate::reassign`]).
     Refit,
 }
+
+/// Which kept hypotheses enter the preferences (step 7).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
+pub enum DuplicateFilter {
+    /// Every kept hypothesis (the thesis).
+    None,
+    /// A hypothesis whose inlier set (squared Sampson distance `≤ thr_px²`)
+    /// equals that of an earlier kept hypothesis is dropped
+    /// ([`crate::HypothesisStatus::Duplicate`]): each consensus set enters
+    /// the preference matrix once, and T-Linkage has fewer columns.
+    SameInliers,
+}

@@ -63,6 +63,8 @@ EXPERIMENT FILE (TOML)
                                largest ratio) | { relative-min = 0.01 } (>= f N points)
   final_assignment = \"none\"   none | refit (IRLS refit of each cluster, then
                                each match to its nearest model within thr_px)
+  duplicate_filter = \"none\"   none | same-inliers (one hypothesis per distinct
+                               inlier set enters the preferences)
   max_memory_mb = 0            > 0: refuse (at once) a scene whose clustering
                                would need more memory (MB); 0: no bound
   seed = 12345                 sampling seed

@@ -3,9 +3,9 @@
 
 use super::{parse_toml, ConfigError};
 use segmentation::{
-    EightPoint, FinalAssignment, FocalSolver, ImplausibleFocal, IrlsFit, Linkage, LocalTest,
-    Method, MinimalSolutions, MinimalSolver, OnFailure, ParamError, Params, Sampling, SizeRule,
-    WeightSets,
+    DuplicateFilter, EightPoint, FinalAssignment, FocalSolver, ImplausibleFocal, IrlsFit, Linkage,
+    LocalTest, Method, MinimalSolutions, MinimalSolver, OnFailure, ParamError, Params, Sampling,
+    SizeRule, WeightSets,
 };
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -61,6 +61,7 @@ pub struct PipelineConfig {
     pub min_cluster_size: usize,
     pub size_rule: SizeRule,
     pub final_assignment: FinalAssignment,
+    pub duplicate_filter: DuplicateFilter,
     pub max_memory_mb: u64,
     /// The run's seed; scene `s` is segmented with the seed
     /// [`crate::pipeline::scene_seed`]`(seed, s)`, as in every committed result.
@@ -75,7 +76,7 @@ impl Default for PipelineConfig {
 
 /// The keys of [`PipelineConfig`] in declaration order: the order of the
 /// swept-parameter columns in every output file.
-pub const PIPELINE_KEYS: [&str; 32] = [
+pub const PIPELINE_KEYS: [&str; 33] = [
     "method",
     "num_samples",
     "adaptive_batch",
@@ -106,6 +107,7 @@ pub const PIPELINE_KEYS: [&str; 32] = [
     "min_cluster_size",
     "size_rule",
     "final_assignment",
+    "duplicate_filter",
     "max_memory_mb",
     "seed",
 ];
@@ -144,6 +146,7 @@ impl PipelineConfig {
             min_cluster_size: p.min_cluster_size,
             size_rule: p.size_rule,
             final_assignment: p.final_assignment,
+            duplicate_filter: p.duplicate_filter,
             max_memory_mb: p.max_memory_mb,
             seed: p.seed,
         }
@@ -181,6 +184,7 @@ impl PipelineConfig {
             min_cluster_size: self.min_cluster_size,
             size_rule: self.size_rule,
             final_assignment: self.final_assignment,
+            duplicate_filter: self.duplicate_filter,
             max_memory_mb: self.max_memory_mb,
             seed: self.seed,
         }

@@ -1,10 +1,13 @@
-//! Adaptive M, the memory bound and the profiles on synthetic scenes of the
+//! The switches that trade cost against accuracy: adaptive M, the duplicate
+//! filter, the memory bound and the profiles, on synthetic scenes of the
 //! `quick` preset.
 
 use datasets::synthetic::Preset;
 use datasets::Scene;
+use geometry::sampson_distances_squared;
 use segmentation::{
-    generate_hypotheses, segment, Matches, Params, Profile, SegmentationError, SupportTracker,
+    generate_hypotheses, segment, segment_with, DuplicateFilter, HypothesisStatus, Matches, Method,
+    Params, Profile, SegmentationError, SupportTracker,
 };
 
 fn quick_scene(category: u32, index: u32) -> Scene {
@@ -136,4 +139,47 @@ fn every_profile_segments_a_synthetic_scene() {
         assert_eq!(seg.labels.len(), scene.points1.len(), "{profile:?}");
         assert!(seg.labels.iter().any(|&l| l >= 0), "{profile:?}");
     }
+}
+
+#[test]
+fn the_duplicate_filter_keeps_one_hypothesis_per_inlier_set() {
+    let scene = quick_scene(2, 900);
+    let params = Params {
+        num_samples: 300,
+        method: Method::Baseline,
+        duplicate_filter: DuplicateFilter::SameInliers,
+        ..Params::default()
+    };
+    let generated = generate_hypotheses(&matches(&scene), &params).unwrap();
+    let seg = segment_with(&matches(&scene), &params, &generated, None).unwrap();
+    // The naive reference: each refined model's inlier set, in order.
+    let tau = params.thr_px * params.thr_px;
+    let mut residuals = vec![0.0; generated.points.len()];
+    let mut first_of = std::collections::HashMap::new();
+    let mut duplicates = 0;
+    for (j, model) in generated.models.iter().enumerate() {
+        let Some(f) = model else { continue };
+        sampson_distances_squared(f, &generated.points, &mut residuals);
+        let set: Vec<bool> = residuals.iter().map(|&r| r <= tau).collect();
+        let first = *first_of.entry(set).or_insert(j);
+        let expected = if first == j {
+            HypothesisStatus::Kept
+        } else {
+            duplicates += 1;
+            HypothesisStatus::Duplicate
+        };
+        assert_eq!(seg.hypotheses[j].status, expected, "hypothesis {j}");
+    }
+    assert!(
+        duplicates > 0,
+        "refined hypotheses of one structure repeat inlier sets"
+    );
+    assert_eq!(seg.counts.kept, first_of.len());
+    // Without the filter every refined hypothesis is kept.
+    let all = Params {
+        duplicate_filter: DuplicateFilter::None,
+        ..params
+    };
+    let seg = segment_with(&matches(&scene), &all, &generated, None).unwrap();
+    assert_eq!(seg.counts.kept, generated.refined().len());
 }
