@@ -313,3 +313,116 @@ fn bad_plot_arguments_name_the_file() {
         .failure()
         .stderr(predicate::str::contains("--image2"));
 }
+
+/// A `[pipeline]` file giving every key of `params`.
+fn write_explicit_config(path: &Path, params: segmentation::Params) {
+    let mut file = toml::Table::new();
+    file.insert(
+        "pipeline".into(),
+        toml::Value::Table(
+            toml::Table::try_from(bench::config::PipelineConfig::from_params(params)).unwrap(),
+        ),
+    );
+    std::fs::write(path, toml::to_string(&file).unwrap()).unwrap();
+}
+
+#[test]
+fn profile_sets_every_key_the_config_does_not_give() {
+    use segmentation::Params;
+    let dir = tempfile::tempdir().unwrap();
+    let matches = dir.path().join("pair.csv");
+    write_matches(&matches);
+    // Labels and summary of `sctl segment` with `args`.
+    let segment = |args: &[&std::ffi::OsStr]| {
+        let output = sctl()
+            .arg("segment")
+            .arg("--matches")
+            .arg(&matches)
+            .args(["--width", "1024", "--height", "768"])
+            .args(args)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8(output.stderr).unwrap();
+        assert!(output.status.success(), "{stderr}");
+        (String::from_utf8(output.stdout).unwrap(), stderr)
+    };
+    let config = |name: &str, text: &str| {
+        let path = dir.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        path
+    };
+    let explicit = |name: &str, params: Params| {
+        let path = dir.path().join(name);
+        write_explicit_config(&path, params);
+        path
+    };
+    let flag = std::ffi::OsStr::new("--config");
+    // The flag alone: the profile's parameters, which are not the default's.
+    assert_ne!(Params::fast(), Params::default());
+    let fast = explicit("fast.toml", Params::fast());
+    let (labels, summary) = segment(&["--profile".as_ref(), "fast".as_ref()]);
+    assert_eq!((labels, summary), segment(&[flag, fast.as_os_str()]));
+
+    // A file's own profile applies; the file's keys override it.
+    let thesis_300 = Params {
+        num_samples: 300,
+        ..Params::thesis()
+    };
+    assert_ne!(thesis_300.method, Params::default().method);
+    let on_thesis = config(
+        "on_thesis.toml",
+        "[pipeline]\nprofile = \"thesis\"\nnum_samples = 300\n",
+    );
+    let thesis = explicit("thesis.toml", thesis_300);
+    let from_file = segment(&[flag, on_thesis.as_os_str()]);
+    assert!(from_file.1.contains("of 300 generated"), "{}", from_file.1);
+    assert_eq!(from_file, segment(&[flag, thesis.as_os_str()]));
+
+    // --profile replaces the file's profile; the file's keys still override.
+    let fast_300 = explicit(
+        "fast_300.toml",
+        Params {
+            num_samples: 300,
+            ..Params::fast()
+        },
+    );
+    let args = [
+        flag,
+        on_thesis.as_os_str(),
+        "--profile".as_ref(),
+        "fast".as_ref(),
+    ];
+    let flagged = segment(&args);
+    assert_ne!(flagged, from_file);
+    assert_eq!(flagged, segment(&[flag, fast_300.as_os_str()]));
+}
+
+#[test]
+fn unknown_profile_lists_the_profiles() {
+    let dir = tempfile::tempdir().unwrap();
+    let matches = dir.path().join("pair.csv");
+    write_matches(&matches);
+    sctl()
+        .arg("segment")
+        .arg("--matches")
+        .arg(&matches)
+        .args(["--width", "1024", "--height", "768", "--profile", "quick"])
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains(
+            "unknown profile `quick`; the profiles are: default, thesis, fast",
+        ));
+    let config = dir.path().join("p.toml");
+    std::fs::write(&config, "[pipeline]\nprofile = \"quick\"\n").unwrap();
+    sctl()
+        .arg("segment")
+        .arg("--matches")
+        .arg(&matches)
+        .args(["--width", "1024", "--height", "768", "--config"])
+        .arg(&config)
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains(
+            "p.toml:2: pipeline.profile: unknown variant `quick`",
+        ));
+}
