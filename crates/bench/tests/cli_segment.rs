@@ -27,6 +27,17 @@ fn write_matches(path: &Path) -> Vec<i32> {
     labels
 }
 
+/// `sctl segment --matches MATCHES --width 1024 --height 768` (the size of
+/// [`write_matches`]'s scene).
+fn segment_1024x768(matches: &Path) -> assert_cmd::Command {
+    let mut cmd = sctl();
+    cmd.arg("segment")
+        .arg("--matches")
+        .arg(matches)
+        .args(["--width", "1024", "--height", "768"]);
+    cmd
+}
+
 #[test]
 fn segments_a_match_file_and_writes_one_label_per_row() {
     let dir = tempfile::tempdir().unwrap();
@@ -142,19 +153,32 @@ fn bad_inputs_fail_with_the_file_and_the_problem() {
         .assert()
         .failure()
         .stderr(predicate::str::contains("broken.csv").and(predicate::str::contains("x2")));
-    // A bad parameter file names its key.
+    // A bad parameter file names its key; an unknown profile, in the file
+    // or on the command line, lists the profiles.
     let params = dir.path().join("params.toml");
-    std::fs::write(&params, "[pipeline]\nlinkage = \"k-linkage\"\n").unwrap();
-    sctl()
-        .arg("segment")
-        .arg("--matches")
-        .arg(&matches)
-        .args(["--width", "1024", "--height", "768", "--config"])
-        .arg(&params)
+    let bad_config = |text: &str, message: &str| {
+        std::fs::write(&params, text).unwrap();
+        segment_1024x768(&matches)
+            .arg("--config")
+            .arg(&params)
+            .assert()
+            .failure()
+            .stderr(predicate::str::contains(message));
+    };
+    bad_config(
+        "[pipeline]\nlinkage = \"k-linkage\"\n",
+        "params.toml:2: pipeline.linkage: unknown variant `k-linkage`",
+    );
+    bad_config(
+        "[pipeline]\nprofile = \"quick\"\n",
+        "params.toml:2: pipeline.profile: unknown variant `quick`, expected one of `default`, `thesis`, `fast`",
+    );
+    segment_1024x768(&matches)
+        .args(["--profile", "quick"])
         .assert()
         .failure()
         .stderr(predicate::str::contains(
-            "params.toml:2: pipeline.linkage: unknown variant `k-linkage`",
+            "unknown profile `quick`; the profiles are: default, thesis, fast",
         ));
     // --width needs --height.
     sctl()
@@ -334,14 +358,7 @@ fn profile_sets_every_key_the_config_does_not_give() {
     write_matches(&matches);
     // Labels and summary of `sctl segment` with `args`.
     let segment = |args: &[&std::ffi::OsStr]| {
-        let output = sctl()
-            .arg("segment")
-            .arg("--matches")
-            .arg(&matches)
-            .args(["--width", "1024", "--height", "768"])
-            .args(args)
-            .output()
-            .unwrap();
+        let output = segment_1024x768(&matches).args(args).output().unwrap();
         let stderr = String::from_utf8(output.stderr).unwrap();
         assert!(output.status.success(), "{stderr}");
         (String::from_utf8(output.stdout).unwrap(), stderr)
@@ -395,34 +412,4 @@ fn profile_sets_every_key_the_config_does_not_give() {
     let flagged = segment(&args);
     assert_ne!(flagged, from_file);
     assert_eq!(flagged, segment(&[flag, fast_300.as_os_str()]));
-}
-
-#[test]
-fn unknown_profile_lists_the_profiles() {
-    let dir = tempfile::tempdir().unwrap();
-    let matches = dir.path().join("pair.csv");
-    write_matches(&matches);
-    sctl()
-        .arg("segment")
-        .arg("--matches")
-        .arg(&matches)
-        .args(["--width", "1024", "--height", "768", "--profile", "quick"])
-        .assert()
-        .failure()
-        .stderr(predicate::str::contains(
-            "unknown profile `quick`; the profiles are: default, thesis, fast",
-        ));
-    let config = dir.path().join("p.toml");
-    std::fs::write(&config, "[pipeline]\nprofile = \"quick\"\n").unwrap();
-    sctl()
-        .arg("segment")
-        .arg("--matches")
-        .arg(&matches)
-        .args(["--width", "1024", "--height", "768", "--config"])
-        .arg(&config)
-        .assert()
-        .failure()
-        .stderr(predicate::str::contains(
-            "p.toml:2: pipeline.profile: unknown variant `quick`",
-        ));
 }
