@@ -22,6 +22,7 @@ __all__ = [
 _Points = npt.ArrayLike  # (N, 2) pixel coordinates
 _Matrix = npt.ArrayLike  # (3, 3) or (K, 3, 3)
 _WeightSets = Union[Literal["adelaidermf", "hopef"], Sequence[Sequence[float]]]
+_Profile = Literal["default", "thesis", "fast"]
 
 @final
 class Segmentation:
@@ -88,9 +89,12 @@ def segment(
     *,
     principal_point: Optional[Tuple[float, float]] = None,
     focal_prior: Optional[float] = None,
+    profile: _Profile = "default",
     seed: int = 12345,
     method: Literal["baseline", "semical"] = "baseline",
     num_samples: int = 3000,
+    adaptive_batch: int = 0,
+    adaptive_tolerance: float = 0.01,
     mss_size: int = 8,
     thr_px: float = 2.5,
     tau_diff: float = 0.05,
@@ -116,13 +120,16 @@ def segment(
     min_cluster_size: int = 8,
     size_rule: Union[Literal["min-size", "largest-gap"], Dict[str, float]] = "min-size",
     final_assignment: Literal["none", "refit"] = "none",
+    max_memory_mb: int = 0,
 ) -> Segmentation:
     """Segments matches into rigid motions (T-Linkage of five-point
     hypotheses at the focal prior; the thesis: method="semical",
-    minimal_solver="eight-point")."""
+    minimal_solver="eight-point", or profile="thesis"). The keywords given
+    override the profile's values (the defaults shown are those of
+    profile="default")."""
 
-def default_params() -> Dict[str, Any]:
-    """The default keyword parameters of ``segment``."""
+def default_params(profile: _Profile = "default") -> Dict[str, Any]:
+    """The keyword parameters of ``segment`` on ``profile``."""
 
 class _FocalAnswer(TypedDict):
     f1: Any

@@ -4,7 +4,7 @@
 use crate::convert::{to_json, value_error};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use segmentation::{Params, PARAM_KEYS};
+use segmentation::{Params, Profile, PARAM_KEYS};
 use serde::de::DeserializeOwned;
 use serde_json::{Map, Value};
 
@@ -39,16 +39,53 @@ pub fn kwargs_object(
     Ok(object)
 }
 
+/// The profile named by the keyword `profile` (absent or `None`:
+/// `default`); anything else is a `ValueError` naming `profile` and the
+/// profiles.
+pub fn profile_from(value: Option<&Bound<'_, PyAny>>) -> PyResult<Profile> {
+    let Some(value) = value.filter(|v| !v.is_none()) else {
+        return Ok(Profile::Default);
+    };
+    value
+        .extract::<String>()
+        .ok()
+        .and_then(|name| Profile::from_name(&name))
+        .ok_or_else(|| {
+            let names: Vec<&str> = Profile::ALL.iter().map(|p| p.name()).collect();
+            value_error(format!(
+                "invalid value for `profile`: {value}; the profiles are: {}",
+                names.join(", ")
+            ))
+        })
+}
+
 /// [`Params`] from keyword arguments named as its fields (a missing key
-/// takes its default), checked by [`Params::validate`].
-pub fn params_from_kwargs(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Params> {
-    let params: Params = from_object(kwargs_object(kwargs, &PARAM_KEYS)?)?;
+/// takes the value of `profile`, [`Profile::params`]), checked by
+/// [`Params::validate`].
+pub fn params_from_kwargs(
+    kwargs: Option<&Bound<'_, PyDict>>,
+    profile: Profile,
+) -> PyResult<Params> {
+    let Value::Object(mut object) =
+        serde_json::to_value(profile.params()).map_err(|e| value_error(e.to_string()))?
+    else {
+        return Err(value_error(
+            "the profile's parameters are not a JSON object",
+        ));
+    };
+    object.extend(kwargs_object(kwargs, &PARAM_KEYS)?);
+    let params: Params = from_object(object)?;
     params.validate().map_err(|e| value_error(e.to_string()))?;
     Ok(params)
 }
 
-/// The default parameters of `segment`, as a dict.
+/// The parameters of `segment` on `profile` ("default", "thesis" or
+/// "fast"; default "default"), as a dict.
 #[pyfunction]
-pub fn default_params(py: Python<'_>) -> PyResult<Bound<'_, PyAny>> {
-    crate::convert::from_json(py, &Params::default())
+#[pyo3(signature = (profile=None), text_signature = "(profile=\"default\")")]
+pub fn default_params<'py>(
+    py: Python<'py>,
+    profile: Option<&Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
+    crate::convert::from_json(py, &profile_from(profile)?.params())
 }

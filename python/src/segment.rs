@@ -2,7 +2,7 @@
 //! thesis through `segmentation::segment`).
 
 use crate::convert::{array1, from_json, matrix_array, pair, point_pairs, value_error};
-use crate::params::params_from_kwargs;
+use crate::params::{params_from_kwargs, profile_from};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
 use pyo3::prelude::*;
@@ -29,12 +29,18 @@ use std::fmt::Write as _;
 ///     ((W - 1) / 2, (H - 1) / 2).
 /// focal_prior : float, optional
 ///     Prior focal length of the focal solvers (px). Default: max(W, H).
+/// profile : str, default "default"
+///     The named parameter set that gives every key not passed: "default"
+///     (the defaults below), "thesis" (the thesis text's Algorithm 1:
+///     method="semical", minimal_solver="eight-point") or "fast" (fewer
+///     samples and IRLS iterations, a few times faster, somewhat less
+///     accurate). ``sctl.default_params(profile)`` lists its values.
 /// seed : int, default 12345
 ///     Seed of the hypothesis sampling. The labels depend on the input, the
 ///     parameters and the seed only (not on the number of threads).
 /// **params
 ///     Any key of the ``[pipeline]`` table, with the same name and default
-///     (``sctl.default_params()`` lists them):
+///     (``sctl.default_params()`` lists them); each overrides the profile's:
 ///
 ///     - method = "baseline"         ("baseline": no focal filter, or "semical")
 ///     - num_samples = 3000          (M, minimal samples drawn; the cap with adaptive_batch)
@@ -78,16 +84,19 @@ use std::fmt::Write as _;
 /// Raises
 /// ------
 /// ValueError
-///     For an unknown parameter or a bad value (the message names the key),
+///     For an unknown parameter or profile or a bad value (the message
+///     names the key),
 ///     arrays of the wrong shape or with NaN, or fewer matches than one
 ///     minimal sample.
 ///
 /// The computation releases the GIL.
 #[pyfunction]
 #[pyo3(
-    signature = (x1, x2, image_size, *, principal_point=None, focal_prior=None, **params),
-    text_signature = "(x1, x2, image_size, *, principal_point=None, focal_prior=None, seed=12345, **params)"
+    signature = (x1, x2, image_size, *, principal_point=None, focal_prior=None, profile=None, **params),
+    text_signature = "(x1, x2, image_size, *, principal_point=None, focal_prior=None, profile=\"default\", seed=12345, **params)"
 )]
+// One argument per keyword of the Python signature.
+#[allow(clippy::too_many_arguments)]
 pub fn segment(
     py: Python<'_>,
     x1: &Bound<'_, PyAny>,
@@ -95,6 +104,7 @@ pub fn segment(
     image_size: &Bound<'_, PyAny>,
     principal_point: Option<&Bound<'_, PyAny>>,
     focal_prior: Option<&Bound<'_, PyAny>>,
+    profile: Option<&Bound<'_, PyAny>>,
     params: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<Segmentation> {
     let (p1, p2) = point_pairs(x1, x2)?;
@@ -109,7 +119,7 @@ pub fn segment(
             .map_err(|_| value_error(format!("focal_prior: expected a number, got {f}")))?;
         matches = matches.with_focal_prior(f);
     }
-    let params = params_from_kwargs(params)?;
+    let params = params_from_kwargs(params, profile_from(profile)?)?;
     let result = py
         .detach(|| segmentation::segment(&matches, &params))
         .map_err(|e| value_error(e.to_string()))?;

@@ -21,6 +21,9 @@ VARIANTS = [
     {"method": "semical", "implausible_focal": "abstain", "linkage": "j-linkage", "thr_px": 3,
      "min_cluster_size": 10, "irls_iters": 3,
      "weight_sets": [[1e-3, 1.0, 1e-3, 1.0], [1e-4, 2.0, 1e-4, 2.0]]},
+    # A profile as the base: `profile` in the [pipeline] table, and a keyword.
+    {"profile": "thesis", "tau_range": 0.25},
+    {"profile": "fast"},
 ]
 
 
@@ -188,3 +191,32 @@ def test_default_is_five_point_without_a_focal_stage(synthetic):
     assert (defaults["method"], defaults["minimal_solver"]) == ("baseline", "five-point")
     assert seg.f_peak is None and seg.consensus is None and seg.focal_verdict is None
     assert seg.kept == seg.refined
+
+
+def test_profile_gives_every_key_not_passed(synthetic):
+    scene = sctl.load_hopef(synthetic[0])
+    args = (scene["x1"], scene["x2"], scene["image_size"])
+    assert sctl.default_params() == sctl.default_params("default") == sctl.default_params(profile=None)
+    thesis = sctl.default_params(profile="thesis")
+    assert (thesis["method"], thesis["minimal_solver"]) == ("semical", "eight-point")
+    assert sctl.default_params("fast") != sctl.default_params()
+    for profile in ("default", "thesis", "fast"):
+        params = sctl.default_params(profile)
+        assert set(params) == set(sctl.default_params())
+        # Keywords override the profile's values; the others are the profile's.
+        seg = sctl.segment(*args, profile=profile, num_samples=200, seed=3)
+        assert seg.params == {**params, "num_samples": 200, "seed": 3}
+        explicit = sctl.segment(*args, **{**params, "num_samples": 200, "seed": 3})
+        np.testing.assert_array_equal(seg.labels, explicit.labels, err_msg=profile)
+        assert (seg.generated, seg.refined, seg.kept) == (explicit.generated, explicit.refined, explicit.kept)
+    assert sctl.segment(*args, profile="fast").params == sctl.default_params("fast")
+
+
+@pytest.mark.parametrize("profile", ["quick", "Fast", 3, ""])
+def test_unknown_profile_raises_value_error_listing_the_profiles(synthetic, profile):
+    scene = sctl.load_hopef(synthetic[0])
+    message = r"`profile`.*the profiles are: default, thesis, fast"
+    with pytest.raises(ValueError, match=message):
+        sctl.segment(scene["x1"], scene["x2"], scene["image_size"], profile=profile)
+    with pytest.raises(ValueError, match=message):
+        sctl.default_params(profile)

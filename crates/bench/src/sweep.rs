@@ -137,6 +137,7 @@ impl SweepPlan {
     }
 
     fn check_against(&self, against: &toml::Table, base: &toml::Table) -> Result<(), SweepError> {
+        refuse_profile("compare.against", against)?;
         for (key, value) in against {
             if !PIPELINE_KEYS.contains(&key.as_str()) {
                 return Err(SweepError {
@@ -277,6 +278,36 @@ mod tests {
     }
 
     #[test]
+    fn profile_is_the_base_of_the_run_not_a_swept_key() {
+        let err = plan("[sweep]\nprofile = [\"default\", \"fast\"]\n")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.starts_with("s.toml:5: sweep.profile: `profile` applies to the whole run"),
+            "{err}"
+        );
+        let err = plan("[compare]\nagainst = { profile = \"thesis\" }\n")
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("compare.against.profile: `profile`"), "{err}");
+        // Swept keys override the profile's values; `profile` is no column.
+        let p =
+            plan("[pipeline]\nprofile = \"thesis\"\n[sweep]\nnum_samples = [100, 200]\n").unwrap();
+        assert_eq!(p.columns, ["method", "num_samples"]);
+        assert_eq!(p.combinations[1].values, ["semical", "200"]);
+        let thesis = segmentation::Params::thesis();
+        for (c, m) in p.combinations.iter().zip([100, 200]) {
+            assert_eq!(
+                c.pipeline.params(),
+                segmentation::Params {
+                    num_samples: m,
+                    ..thesis.clone()
+                }
+            );
+        }
+    }
+
+    #[test]
     fn reference_combination_differs_only_in_against() {
         let p = plan("[sweep]\nmethod = [\"baseline\", \"semical\"]\nnum_samples = [100, 200]\n")
             .unwrap();
@@ -299,6 +330,7 @@ fn swept_lists<'a>(
     config: &'a ExperimentConfig,
     base: &toml::Table,
 ) -> Result<Vec<Swept<'a>>, SweepError> {
+    refuse_profile("sweep", &config.sweep)?;
     if let Some(key) = config
         .sweep
         .keys()
@@ -339,6 +371,21 @@ fn swept_lists<'a>(
         swept.push((key, values));
     }
     Ok(swept)
+}
+
+/// Refuses `profile` in `table` (the table `section`): the profile is the
+/// base of the whole run, read once with `[pipeline]`, not a parameter of a
+/// combination.
+fn refuse_profile(section: &str, table: &toml::Table) -> Result<(), SweepError> {
+    if table.contains_key("profile") {
+        return Err(SweepError {
+            key: format!("{section}.profile"),
+            message: "`profile` applies to the whole run and cannot vary between combinations: \
+                      give it in [pipeline], then list here the keys whose values differ"
+                .into(),
+        });
+    }
+    Ok(())
 }
 
 /// Every combination of the swept values, the first swept key slowest.

@@ -27,6 +27,17 @@ fn write_matches(path: &Path) -> Vec<i32> {
     labels
 }
 
+/// `sctl segment --matches MATCHES --width 1024 --height 768` (the size of
+/// [`write_matches`]'s scene).
+fn segment_1024x768(matches: &Path) -> assert_cmd::Command {
+    let mut cmd = sctl();
+    cmd.arg("segment")
+        .arg("--matches")
+        .arg(matches)
+        .args(["--width", "1024", "--height", "768"]);
+    cmd
+}
+
 #[test]
 fn segments_a_match_file_and_writes_one_label_per_row() {
     let dir = tempfile::tempdir().unwrap();
@@ -142,19 +153,32 @@ fn bad_inputs_fail_with_the_file_and_the_problem() {
         .assert()
         .failure()
         .stderr(predicate::str::contains("broken.csv").and(predicate::str::contains("x2")));
-    // A bad parameter file names its key.
+    // A bad parameter file names its key; an unknown profile, in the file
+    // or on the command line, lists the profiles.
     let params = dir.path().join("params.toml");
-    std::fs::write(&params, "[pipeline]\nlinkage = \"k-linkage\"\n").unwrap();
-    sctl()
-        .arg("segment")
-        .arg("--matches")
-        .arg(&matches)
-        .args(["--width", "1024", "--height", "768", "--config"])
-        .arg(&params)
+    let bad_config = |text: &str, message: &str| {
+        std::fs::write(&params, text).unwrap();
+        segment_1024x768(&matches)
+            .arg("--config")
+            .arg(&params)
+            .assert()
+            .failure()
+            .stderr(predicate::str::contains(message));
+    };
+    bad_config(
+        "[pipeline]\nlinkage = \"k-linkage\"\n",
+        "params.toml:2: pipeline.linkage: unknown variant `k-linkage`",
+    );
+    bad_config(
+        "[pipeline]\nprofile = \"quick\"\n",
+        "params.toml:2: pipeline.profile: unknown variant `quick`, expected one of `default`, `thesis`, `fast`",
+    );
+    segment_1024x768(&matches)
+        .args(["--profile", "quick"])
         .assert()
         .failure()
         .stderr(predicate::str::contains(
-            "params.toml:2: pipeline.linkage: unknown variant `k-linkage`",
+            "unknown profile `quick`; the profiles are: default, thesis, fast",
         ));
     // --width needs --height.
     sctl()
@@ -312,4 +336,80 @@ fn bad_plot_arguments_name_the_file() {
         .assert()
         .failure()
         .stderr(predicate::str::contains("--image2"));
+}
+
+/// A `[pipeline]` file giving every key of `params`.
+fn write_explicit_config(path: &Path, params: segmentation::Params) {
+    let mut file = toml::Table::new();
+    file.insert(
+        "pipeline".into(),
+        toml::Value::Table(
+            toml::Table::try_from(bench::config::PipelineConfig::from_params(params)).unwrap(),
+        ),
+    );
+    std::fs::write(path, toml::to_string(&file).unwrap()).unwrap();
+}
+
+#[test]
+fn profile_sets_every_key_the_config_does_not_give() {
+    use segmentation::Params;
+    let dir = tempfile::tempdir().unwrap();
+    let matches = dir.path().join("pair.csv");
+    write_matches(&matches);
+    // Labels and summary of `sctl segment` with `args`.
+    let segment = |args: &[&std::ffi::OsStr]| {
+        let output = segment_1024x768(&matches).args(args).output().unwrap();
+        let stderr = String::from_utf8(output.stderr).unwrap();
+        assert!(output.status.success(), "{stderr}");
+        (String::from_utf8(output.stdout).unwrap(), stderr)
+    };
+    let config = |name: &str, text: &str| {
+        let path = dir.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        path
+    };
+    let explicit = |name: &str, params: Params| {
+        let path = dir.path().join(name);
+        write_explicit_config(&path, params);
+        path
+    };
+    let flag = std::ffi::OsStr::new("--config");
+    // The flag alone: the profile's parameters, which are not the default's.
+    assert_ne!(Params::fast(), Params::default());
+    let fast = explicit("fast.toml", Params::fast());
+    let (labels, summary) = segment(&["--profile".as_ref(), "fast".as_ref()]);
+    assert_eq!((labels, summary), segment(&[flag, fast.as_os_str()]));
+
+    // A file's own profile applies; the file's keys override it.
+    let thesis_300 = Params {
+        num_samples: 300,
+        ..Params::thesis()
+    };
+    assert_ne!(thesis_300.method, Params::default().method);
+    let on_thesis = config(
+        "on_thesis.toml",
+        "[pipeline]\nprofile = \"thesis\"\nnum_samples = 300\n",
+    );
+    let thesis = explicit("thesis.toml", thesis_300);
+    let from_file = segment(&[flag, on_thesis.as_os_str()]);
+    assert!(from_file.1.contains("of 300 generated"), "{}", from_file.1);
+    assert_eq!(from_file, segment(&[flag, thesis.as_os_str()]));
+
+    // --profile replaces the file's profile; the file's keys still override.
+    let fast_300 = explicit(
+        "fast_300.toml",
+        Params {
+            num_samples: 300,
+            ..Params::fast()
+        },
+    );
+    let args = [
+        flag,
+        on_thesis.as_os_str(),
+        "--profile".as_ref(),
+        "fast".as_ref(),
+    ];
+    let flagged = segment(&args);
+    assert_ne!(flagged, from_file);
+    assert_eq!(flagged, segment(&[flag, fast_300.as_os_str()]));
 }

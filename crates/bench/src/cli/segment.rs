@@ -13,7 +13,7 @@ use crate::plots::{clusters_over_images, PlotFormat};
 use anyhow::{bail, Context, Result};
 use datasets::Scene;
 use image::{ImageFormat, ImageReader, RgbImage};
-use segmentation::{FocalVerdict, MinimalSolver, Params};
+use segmentation::{FocalVerdict, MinimalSolver, Params, Profile};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -31,9 +31,19 @@ pub struct Args {
     #[arg(long, value_name = "H", requires = "width")]
     pub height: Option<u32>,
     /// Parameters: a TOML file with a `[pipeline]` table (an experiment file
-    /// works too) [default: thesis Table 1].
+    /// works too); the keys it does not give take the values of its
+    /// `profile` key, or of --profile when given [default: the parameters of
+    /// --profile; those of `default` are five-point hypotheses at the focal
+    /// prior, no focal filter, Table 1 values].
     #[arg(long, value_name = "FILE")]
     pub config: Option<PathBuf>,
+    /// Named parameter set: default | thesis (the thesis text's Algorithm 1)
+    /// | fast (fewer samples and IRLS iterations, a few times faster,
+    /// somewhat less accurate). With --config it replaces the file's
+    /// `profile` key; the keys the file gives still override it [default:
+    /// the file's `profile`, else default].
+    #[arg(long, value_name = "NAME", value_parser = parse_profile)]
+    pub profile: Option<Profile>,
     /// Write the labels here, one per input row [default: stdout, summary on stderr].
     #[arg(long, value_name = "FILE")]
     pub out: Option<PathBuf>,
@@ -51,6 +61,18 @@ pub struct Args {
     /// Second image (PNG, W x H pixels), drawn under the clusters of --plot.
     #[arg(long, value_name = "FILE", requires_all = ["image1", "plot"])]
     pub image2: Option<PathBuf>,
+}
+
+/// The profile called `name`; an unknown name is an error listing the
+/// profiles.
+fn parse_profile(name: &str) -> Result<Profile, String> {
+    Profile::from_name(name).ok_or_else(|| {
+        let names: Vec<&str> = Profile::ALL.iter().map(|p| p.name()).collect();
+        format!(
+            "unknown profile `{name}`; the profiles are: {}",
+            names.join(", ")
+        )
+    })
 }
 
 /// Reads a PNG image as RGB and checks that it is `size` pixels; any other
@@ -89,8 +111,8 @@ fn load_png(path: &Path, size: (u32, u32)) -> Result<RgbImage> {
 /// Segments the matches, writes the labels and prints a summary.
 pub fn run(args: Args) -> Result<()> {
     let config = match &args.config {
-        Some(path) => PipelineConfig::load(path)?,
-        None => PipelineConfig::default(),
+        Some(path) => PipelineConfig::load_with_profile(path, args.profile)?,
+        None => PipelineConfig::of_profile(args.profile.unwrap_or_default()),
     };
     let size = args.width.zip(args.height);
     if let Some(plot) = &args.plot {

@@ -26,6 +26,10 @@ EXPERIMENT FILE (TOML)
                                hypotheses at the focal prior without the focal
                                filter; the thesis text: method = \"semical\",
                                minimal_solver = \"eight-point\"; Table 1 values)
+  profile = \"default\"          default | thesis | fast: the values of every key
+                               not given here (default: those below; thesis:
+                               the thesis text's; fast: fewer samples and IRLS
+                               iterations). Not a [sweep] key
   method = \"baseline\"          baseline (no focal filter) | semical (Algorithm 1)
   num_samples = 3000           M, minimal samples per scene (at most, adaptive)
   adaptive_batch = 0           > 0: draw M in batches of this many until a batch
@@ -135,6 +139,7 @@ mod tests {
                 height: Some(1),
             },
             pipeline: PipelineConfig {
+                profile: Profile::Fast,
                 focal_file: "f.csv".into(),
                 ..PipelineConfig::default()
             },

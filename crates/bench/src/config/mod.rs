@@ -24,7 +24,7 @@ pub use help::CONFIG_KEYS_HELP;
 pub use pipeline::{PipelineConfig, PIPELINE_KEYS};
 pub use segmentation::{
     EightPoint, FocalSolver, IrlsFit, Linkage, LocalTest, Method, MinimalSolutions, MinimalSolver,
-    OnFailure, ParamError, Params, WeightPreset, WeightSets,
+    OnFailure, ParamError, Params, Profile, WeightPreset, WeightSets,
 };
 pub use tables::{CompareConfig, PlotFormat, PlotsConfig};
 pub use toml_error::{parse_toml, ConfigError};
@@ -44,7 +44,7 @@ pub struct ExperimentConfig {
     pub description: Option<String>,
     /// The scenes.
     pub dataset: DatasetConfig,
-    /// The base parameters of every combination.
+    /// The base parameters of every combination (resolved on its profile).
     #[serde(default)]
     pub pipeline: PipelineConfig,
     /// Parameters given as lists: the run is their cartesian product.
@@ -71,7 +71,8 @@ impl ExperimentConfig {
 
     /// As [`ExperimentConfig::load`], from text; `file` only names the source in errors.
     pub fn parse(text: &str, file: &Path) -> Result<Self, ConfigError> {
-        let config: ExperimentConfig = parse_toml(text, file)?;
+        let mut config: ExperimentConfig = parse_toml(text, file)?;
+        config.pipeline = config.pipeline.resolve_profile(None, text, file)?;
         config.check(file).map_err(|e| {
             let key = match &e {
                 ConfigError::Invalid { key, .. } => key.clone(),

@@ -4,7 +4,8 @@
 use super::{parse_toml, ConfigError};
 use segmentation::{
     DuplicateFilter, EightPoint, FinalAssignment, FocalSolver, ImplausibleFocal, IrlsFit, Linkage,
-    LocalTest, Method, MinimalSolutions, MinimalSolver, OnFailure, ParamError, Params, Sampling,
+    LocalTest, Method, MinimalSolutions, MinimalSolver, OnFailure, ParamError, Params, Profile,
+    Sampling,
     SizeRule, WeightSets,
 };
 use serde::{Deserialize, Serialize};
@@ -12,8 +13,10 @@ use std::path::Path;
 
 /// The `[pipeline]` table of an experiment file: every parameter of
 /// [`segmentation::Params`] under the same name, with the same default (see
-/// the field docs there), and `focal_file`, the harness's source of the
-/// answers of `focal_solver = "external"`.
+/// the field docs there), `focal_file`, the harness's source of the
+/// answers of `focal_solver = "external"`, and `profile`, the named set of
+/// parameters ([`segmentation::Profile`]) that gives every key the table
+/// does not ([`PipelineConfig::on_profile`]).
 ///
 /// ```
 /// let p: bench::config::PipelineConfig = toml::from_str("num_samples = 500").unwrap();
@@ -25,6 +28,15 @@ use std::path::Path;
 #[serde(deny_unknown_fields, default)]
 #[allow(missing_docs)] // each field is documented on segmentation::Params
 pub struct PipelineConfig {
+    /// The named parameter set whose values the keys this table does not
+    /// give take: `default` ([`Params::default`]), `thesis`
+    /// ([`Params::thesis`]) or `fast` ([`Params::fast`]). Applied when a
+    /// file is read ([`PipelineConfig::load`],
+    /// [`super::ExperimentConfig::parse`]): the other fields hold the
+    /// resolved values. Not one of [`PIPELINE_KEYS`] (it cannot be swept).
+    /// Default `default` (not serialised then).
+    #[serde(skip_serializing_if = "is_default_profile")]
+    pub profile: Profile,
     pub method: Method,
     pub num_samples: usize,
     pub adaptive_batch: usize,
@@ -112,10 +124,15 @@ pub const PIPELINE_KEYS: [&str; 33] = [
     "seed",
 ];
 
+fn is_default_profile(profile: &Profile) -> bool {
+    *profile == Profile::Default
+}
+
 impl PipelineConfig {
-    /// The table of `params`, without a focal file.
+    /// The table of `params`, without a focal file, on the `default` profile.
     pub fn from_params(p: Params) -> Self {
         Self {
+            profile: Profile::Default,
             method: p.method,
             num_samples: p.num_samples,
             adaptive_batch: p.adaptive_batch,
@@ -214,6 +231,77 @@ impl PipelineConfig {
     }
 }
 
+impl PipelineConfig {
+    /// The table of a profile: its parameters, on that profile.
+    pub fn of_profile(profile: Profile) -> Self {
+        Self {
+            profile,
+            ..Self::from_params(profile.params())
+        }
+    }
+
+    /// `self`, as read from a `[pipeline]` table that gives the keys of
+    /// `given`, on the base `profile` instead of [`Params::default`]: the
+    /// keys of `given` keep their values in `self`, every other key takes
+    /// `profile`'s ([`Profile::params`]). The error is serde's message.
+    ///
+    /// ```
+    /// use bench::config::PipelineConfig;
+    /// use segmentation::{Params, Profile};
+    /// let given: toml::Table = toml::from_str("thr_px = 4.0").unwrap();
+    /// let read: PipelineConfig = toml::from_str("thr_px = 4.0").unwrap();
+    /// let p = read.on_profile(Profile::Thesis, &given).unwrap();
+    /// assert_eq!(p.params(), Params { thr_px: 4.0, ..Params::thesis() });
+    /// assert_eq!(p.profile, Profile::Thesis);
+    /// ```
+    pub fn on_profile(&self, profile: Profile, given: &toml::Table) -> Result<Self, String> {
+        let own = toml::Table::try_from(self).map_err(|e| e.to_string())?;
+        let mut table =
+            toml::Table::try_from(Self::of_profile(profile)).map_err(|e| e.to_string())?;
+        for key in given.keys() {
+            match own.get(key) {
+                Some(value) => table.insert(key.clone(), value.clone()),
+                None => table.remove(key),
+            };
+        }
+        let resolved: Self = toml::Value::Table(table)
+            .try_into()
+            .map_err(|e: toml::de::Error| e.message().trim().replace('\n', "; "))?;
+        Ok(Self {
+            profile,
+            ..resolved
+        })
+    }
+
+    /// `self`, read from the `[pipeline]` table of `text` (the file `file`),
+    /// on its profile: `profile` when given (e.g. by the command line), else
+    /// the table's own `profile` key.
+    pub(super) fn resolve_profile(
+        self,
+        profile: Option<Profile>,
+        text: &str,
+        file: &Path,
+    ) -> Result<Self, ConfigError> {
+        let profile = profile.unwrap_or(self.profile);
+        if profile == Profile::Default {
+            // The serde defaults are the default profile's.
+            return Ok(Self { profile, ..self });
+        }
+        let table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
+            ConfigError::invalid(file, "(top level)", e.message().trim())
+        })?;
+        let empty = toml::Table::new();
+        let given = table
+            .get("pipeline")
+            .and_then(toml::Value::as_table)
+            .unwrap_or(&empty);
+        self.on_profile(profile, given).map_err(|message| {
+            ConfigError::invalid(file, "pipeline.profile", message)
+                .with_line(text, "pipeline.profile")
+        })
+    }
+}
+
 /// A file that gives `[pipeline]` parameters: an experiment file (its other
 /// tables are ignored) or a file holding only a `[pipeline]` table.
 #[derive(Deserialize)]
@@ -236,18 +324,25 @@ struct PipelineFile {
 }
 
 impl PipelineConfig {
-    /// Reads the `[pipeline]` table of a file (missing keys take their
-    /// defaults) and checks it.
+    /// Reads the `[pipeline]` table of a file (missing keys take the values
+    /// of its `profile`) and checks it.
     pub fn load(path: &Path) -> Result<Self, ConfigError> {
+        Self::load_with_profile(path, None)
+    }
+
+    /// As [`PipelineConfig::load`], on `profile` instead of the file's own
+    /// `profile` key when given: the keys the file gives still override it.
+    pub fn load_with_profile(path: &Path, profile: Option<Profile>) -> Result<Self, ConfigError> {
         let text = std::fs::read_to_string(path).map_err(|source| ConfigError::Read {
             file: path.to_path_buf(),
             source,
         })?;
         let file: PipelineFile = parse_toml(&text, path)?;
-        file.pipeline.validate().map_err(|e| {
+        let pipeline = file.pipeline.resolve_profile(profile, &text, path)?;
+        pipeline.validate().map_err(|e| {
             let key = format!("pipeline.{}", e.key);
             ConfigError::invalid(path, key.clone(), e.message).with_line(&text, &key)
         })?;
-        Ok(file.pipeline)
+        Ok(pipeline)
     }
 }

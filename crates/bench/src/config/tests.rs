@@ -220,3 +220,130 @@ fn size_rule_reads_each_rule_and_rejects_a_bad_fraction() {
     assert!(err.contains("pipeline.size_rule"), "{err}");
     assert!(parse(&format!("{BASE}[pipeline]\nsize_rule = \"gap\"\n")).is_err());
 }
+
+#[test]
+fn profile_gives_the_keys_the_table_does_not() {
+    // No profile, or `default`: Params::default().
+    let none = parse(BASE).unwrap();
+    let default = parse(&format!("{BASE}[pipeline]\nprofile = \"default\"\n")).unwrap();
+    assert_eq!(none, default);
+    assert_eq!(none.pipeline.params(), Params::default());
+    for profile in Profile::ALL {
+        let c = parse(&format!(
+            "{BASE}[pipeline]\nprofile = \"{}\"\n",
+            profile.name()
+        ))
+        .unwrap();
+        assert_eq!(c.pipeline.params(), profile.params(), "{profile:?}");
+        assert_eq!(c.pipeline.profile, profile);
+    }
+    // The keys the table gives override the profile's, wherever they stand.
+    let c = parse(&format!(
+        "{BASE}[pipeline]\nthr_px = 4.0\nprofile = \"thesis\"\nmethod = \"baseline\"\n"
+    ))
+    .unwrap();
+    assert_eq!(
+        c.pipeline.params(),
+        Params {
+            thr_px: 4.0,
+            method: Method::Baseline,
+            ..Params::thesis()
+        }
+    );
+    // A key given with the default's value still overrides the profile.
+    let c = parse(&format!(
+        "{BASE}[pipeline]\nprofile = \"thesis\"\nminimal_solver = \"five-point\"\n"
+    ))
+    .unwrap();
+    assert_eq!(c.pipeline.minimal_solver, MinimalSolver::FivePoint);
+    assert_eq!(c.pipeline.method, Method::Semical);
+}
+
+#[test]
+fn bad_profile_and_errors_beside_it_name_key_and_line() {
+    let err = parse(&format!("{BASE}[pipeline]\n\nprofile = \"quick\"\n"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.starts_with("exp.toml:6: pipeline.profile: unknown variant `quick`"),
+        "{err}"
+    );
+    for name in ["default", "thesis", "fast"] {
+        assert!(err.contains(&format!("`{name}`")), "{err}");
+    }
+    let err = parse(&format!("{BASE}[pipeline]\nprofile = \"fast\"\nthr = 3\n"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.starts_with("exp.toml:6: pipeline.thr: unknown field `thr`"),
+        "{err}"
+    );
+    let err = parse(&format!(
+        "{BASE}[pipeline]\nprofile = \"fast\"\n\ntau_range = -0.1\n"
+    ))
+    .unwrap_err()
+    .to_string();
+    assert_eq!(
+        err,
+        "exp.toml:7: pipeline.tau_range: must be a finite number > 0, got -0.1"
+    );
+}
+
+#[test]
+fn resolved_config_on_a_profile_reads_back_the_same() {
+    let c = parse(&format!(
+        "{BASE}[pipeline]\nprofile = \"fast\"\nthr_px = 3.5\n[sweep]\nseed = [1, 2]\n"
+    ))
+    .unwrap();
+    assert_eq!(
+        c.pipeline.params(),
+        Params {
+            thr_px: 3.5,
+            ..Params::fast()
+        }
+    );
+    let text = c.to_toml();
+    assert!(text.contains("profile = \"fast\""), "{text}");
+    assert_eq!(parse(&text).unwrap(), c);
+    // Without a profile the resolved file does not mention one.
+    assert!(!parse(BASE).unwrap().to_toml().contains("profile"));
+}
+
+#[test]
+fn pipeline_file_reads_its_profile_or_the_given_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("p.toml");
+    std::fs::write(
+        &path,
+        "[pipeline]\nprofile = \"thesis\"\nnum_samples = 700\n",
+    )
+    .unwrap();
+    let thesis = Params {
+        num_samples: 700,
+        ..Params::thesis()
+    };
+    assert_eq!(PipelineConfig::load(&path).unwrap().params(), thesis);
+    // A given profile replaces the file's; the file's keys still override.
+    let fast = PipelineConfig::load_with_profile(&path, Some(Profile::Fast)).unwrap();
+    assert_eq!(
+        fast.params(),
+        Params {
+            num_samples: 700,
+            ..Params::fast()
+        }
+    );
+    assert_eq!(fast.profile, Profile::Fast);
+    let default = PipelineConfig::load_with_profile(&path, Some(Profile::Default)).unwrap();
+    assert_eq!(
+        default.params(),
+        Params {
+            num_samples: 700,
+            ..Params::default()
+        }
+    );
+    // No [pipeline] table: the profile's values.
+    std::fs::write(&path, "name = \"x\"\n").unwrap();
+    let fast = PipelineConfig::load_with_profile(&path, Some(Profile::Fast)).unwrap();
+    assert_eq!(fast, PipelineConfig::of_profile(Profile::Fast));
+    assert_eq!(fast.params(), Params::fast());
+}
