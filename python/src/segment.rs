@@ -70,7 +70,7 @@ use std::fmt::Write as _;
 ///     - linkage = "t-linkage"       ("t-linkage" or "j-linkage")
 ///     - min_cluster_size = 8        (smaller clusters become outliers)
 ///     - size_rule = "min-size"      ("min-size", "largest-gap" or {"relative-min": f})
-///     - final_assignment = "none"   ("none", or "refit": refitted cluster models, nearest within thr_px)
+///     - final_assignment = "none"   ("none", "refit": refitted cluster models, nearest within thr_px, or "merge": clusters one model explains joined)
 ///     - duplicate_filter = "none"   ("none", or "same-inliers": one hypothesis per distinct inlier set)
 ///     - max_memory_mb = 0           (> 0: refuse a clustering that would need more memory, MB)
 ///

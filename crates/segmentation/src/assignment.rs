@@ -34,7 +34,7 @@ pub fn reassign(
 }
 
 /// The matches of each label `0..clusters`, increasing.
-fn members(labels: &[i32], clusters: usize) -> Vec<Vec<usize>> {
+pub(crate) fn members(labels: &[i32], clusters: usize) -> Vec<Vec<usize>> {
     let mut members = vec![Vec::new(); clusters];
     for (i, &label) in labels.iter().enumerate() {
         if let Some(m) = usize::try_from(label).ok().and_then(|l| members.get_mut(l)) {
@@ -78,7 +78,11 @@ fn nearest_model(points: &Correspondences, models: &[Option<Matrix3<f64>>], thr2
 
 /// Labels `0..clusters` with fewer than `min_size` matches become −1; the
 /// others are renumbered by first appearance.
-fn drop_small_and_renumber(labels: &[i32], clusters: usize, min_size: usize) -> Vec<i32> {
+pub(crate) fn drop_small_and_renumber(
+    labels: &[i32],
+    clusters: usize,
+    min_size: usize,
+) -> Vec<i32> {
     let mut sizes = vec![0usize; clusters];
     for &l in labels.iter().filter(|&&l| l >= 0) {
         sizes[l as usize] += 1;

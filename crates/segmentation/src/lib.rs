@@ -35,6 +35,7 @@ mod filter;
 mod focals;
 mod hypotheses;
 mod input;
+mod merge;
 mod minimal;
 mod params;
 mod profile;
@@ -54,6 +55,7 @@ pub use focals::{
 };
 pub use hypotheses::{centred_points, generate_hypotheses, GeneratedHypotheses};
 pub use input::{image_centre, Matches};
+pub use merge::{merge_explained, InlierBits, MERGE_SHARE};
 pub use params::{
     DuplicateFilter, EightPoint, FinalAssignment, FocalKey, FocalSolver, HypothesisKey,
     ImplausibleFocal, IrlsFit, Linkage, LocalTest, Method, MinimalSolutions, MinimalSolver,

@@ -159,8 +159,10 @@ pub struct Params {
     /// `thr_px`, else outlier; clusters left below `min_cluster_size`
     /// become outliers; labels numbered by first appearance), as
     /// Progressive-X (Barath & Matas, ICCV 2019) and consensus-space
-    /// clustering (Barath et al., CVPR 2023) end ([`crate::reassign`]).
-    /// Default `none`.
+    /// clustering (Barath et al., CVPR 2023) end ([`crate::reassign`]);
+    /// or `merge` (a cluster joins a larger one whose best-supported
+    /// hypothesis explains [`crate::MERGE_SHARE`] of its matches,
+    /// [`crate::merge_explained`]). Default `none`.
     pub final_assignment: FinalAssignment,
     /// Which kept hypotheses enter the preferences (step 7): `none` (all,
     /// the thesis) or `same-inliers` (one per distinct inlier set,

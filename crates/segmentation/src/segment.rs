@@ -1,11 +1,12 @@
 //! Algorithm 1 end to end (method.md steps 1–9), and steps 5–9 on
 //! hypotheses and focals computed beforehand.
 
+use crate::merge::inlier_words;
 use crate::{
-    estimate_hypothesis_focals, focal_filter, generate_hypotheses, reassign, ClusterModel,
-    DuplicateFilter, FinalAssignment, FocalVerdict, GeneratedHypotheses, Hypothesis,
-    HypothesisCounts, HypothesisFocals, HypothesisStatus, Matches, Method, MinimalSolutions,
-    MinimalSolver, Params, Segmentation, SegmentationError, StageTimings,
+    estimate_hypothesis_focals, focal_filter, generate_hypotheses, merge_explained, reassign,
+    ClusterModel, DuplicateFilter, FinalAssignment, FocalVerdict, GeneratedHypotheses, Hypothesis,
+    HypothesisCounts, HypothesisFocals, HypothesisStatus, InlierBits, Matches, Method,
+    MinimalSolutions, MinimalSolver, Params, Segmentation, SegmentationError, StageTimings,
 };
 use clustering::ClusteringParams;
 use geometry::{eight_point_normalized, sampson_distances_squared, Correspondences};
@@ -214,6 +215,8 @@ fn cluster_kept(
     let mut builder = clustering_params.preference_builder(points.len(), tau)?;
     let mut residuals = vec![0.0; points.len()];
     let mut seen = InlierSets::new(params.duplicate_filter, tau);
+    let mut inliers = InlierBits::new(points.len());
+    let merge = params.final_assignment == FinalAssignment::Merge;
     for &j in kept {
         let Some(model) = generated.models[j].as_ref() else {
             continue;
@@ -223,6 +226,9 @@ fn cluster_kept(
             segmentation.hypotheses[j].status = HypothesisStatus::Duplicate;
             segmentation.counts.kept -= 1;
             continue;
+        }
+        if merge {
+            inliers.push(&residuals, tau);
         }
         builder.push_residuals(&residuals)?;
     }
@@ -244,6 +250,15 @@ fn cluster_kept(
                 &clustering.labels,
                 clustering.clusters_after_filter,
                 params,
+            );
+            let clusters = labels.iter().map(|&l| l + 1).max().unwrap_or(0) as usize;
+            (labels, clusters)
+        }
+        FinalAssignment::Merge => {
+            let labels = merge_explained(
+                &clustering.labels,
+                clustering.clusters_after_filter,
+                &inliers,
             );
             let clusters = labels.iter().map(|&l| l + 1).max().unwrap_or(0) as usize;
             (labels, clusters)
@@ -280,13 +295,7 @@ impl InlierSets {
         if self.filter == DuplicateFilter::None {
             return false;
         }
-        let mut bits = vec![0u64; residuals.len().div_ceil(64)];
-        for (i, &r) in residuals.iter().enumerate() {
-            if r <= self.tau {
-                bits[i / 64] |= 1 << (i % 64);
-            }
-        }
-        !self.seen.insert(bits)
+        !self.seen.insert(inlier_words(residuals, self.tau))
     }
 }
 

@@ -172,6 +172,10 @@ pub enum FinalAssignment {
     /// Progressive-X (Barath & Matas, ICCV 2019) and consensus-space
     /// clustering (Barath et al., CVPR 2023) end ([`crate::reassign`]).
     Refit,
+    /// Merge a cluster into a larger one whose model (its best-supported
+    /// hypothesis) explains at least [`crate::MERGE_SHARE`] of its matches
+    /// ([`crate::merge_explained`]); no match changes cluster otherwise.
+    Merge,
 }
 
 /// Which kept hypotheses enter the preferences (step 7).

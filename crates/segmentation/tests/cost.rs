@@ -183,3 +183,31 @@ fn the_duplicate_filter_keeps_one_hypothesis_per_inlier_set() {
     let seg = segment_with(&matches(&scene), &all, &generated, None).unwrap();
     assert_eq!(seg.counts.kept, generated.refined().len());
 }
+
+#[test]
+fn merging_only_joins_clusters() {
+    use segmentation::FinalAssignment;
+    for (category, index) in [(1, 900), (2, 900), (2, 901)] {
+        let scene = quick_scene(category, index);
+        let none = Params {
+            num_samples: 300,
+            ..Params::default()
+        };
+        let merge = Params {
+            final_assignment: FinalAssignment::Merge,
+            ..none.clone()
+        };
+        let a = segment(&matches(&scene), &none).unwrap().labels;
+        let b = segment(&matches(&scene), &merge).unwrap().labels;
+        // The outliers are the same, and each merged cluster is a union of
+        // clusters: matches together before stay together.
+        for i in 0..a.len() {
+            assert_eq!(a[i] < 0, b[i] < 0, "match {i}");
+            for k in 0..a.len() {
+                if a[i] >= 0 && a[i] == a[k] {
+                    assert_eq!(b[i], b[k], "matches {i} and {k}");
+                }
+            }
+        }
+    }
+}

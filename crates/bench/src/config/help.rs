@@ -67,6 +67,8 @@ EXPERIMENT FILE (TOML)
                                largest ratio) | { relative-min = 0.01 } (>= f N points)
   final_assignment = \"none\"   none | refit (IRLS refit of each cluster, then
                                each match to its nearest model within thr_px)
+                               | merge (a cluster joins a larger one whose best
+                               hypothesis explains 80 % of its matches)
   duplicate_filter = \"none\"   none | same-inliers (one hypothesis per distinct
                                inlier set enters the preferences)
   max_memory_mb = 0            > 0: refuse (at once) a scene whose clustering
