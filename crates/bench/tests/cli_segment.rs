@@ -180,6 +180,17 @@ fn bad_inputs_fail_with_the_file_and_the_problem() {
         .stderr(predicate::str::contains(
             "unknown profile `quick`; the profiles are: default, thesis, fast",
         ));
+    // A memory bound below the clustering's need stops at once and says
+    // what it would need: the quick scene's 150 matches at M 20 000 need
+    // more than 1 MB.
+    bad_config(
+        "[pipeline]\nmax_memory_mb = 1\nnum_samples = 20000\n",
+        "x 20000 hypotheses would need about",
+    );
+    bad_config(
+        "[pipeline]\nmax_memory_mb = 1\nnum_samples = 20000\n",
+        "above max_memory_mb = 1: lower num_samples or raise max_memory_mb",
+    );
     // --width needs --height.
     sctl()
         .arg("segment")
