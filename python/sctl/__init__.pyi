@@ -22,7 +22,7 @@ __all__ = [
 _Points = npt.ArrayLike  # (N, 2) pixel coordinates
 _Matrix = npt.ArrayLike  # (3, 3) or (K, 3, 3)
 _WeightSets = Union[Literal["adelaidermf", "hopef"], Sequence[Sequence[float]]]
-_Profile = Literal["default", "thesis", "fast"]
+_Profile = Literal["default", "thesis", "fast", "large"]
 
 @final
 class Segmentation:
@@ -119,7 +119,8 @@ def segment(
     linkage: Literal["t-linkage", "j-linkage"] = "t-linkage",
     min_cluster_size: int = 8,
     size_rule: Union[Literal["min-size", "largest-gap"], Dict[str, float]] = "min-size",
-    final_assignment: Literal["none", "refit"] = "none",
+    final_assignment: Literal["merge", "none", "refit"] = "merge",
+    duplicate_filter: Literal["none", "same-inliers"] = "none",
     max_memory_mb: int = 0,
 ) -> Segmentation:
     """Segments matches into rigid motions (T-Linkage of five-point

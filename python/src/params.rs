@@ -79,8 +79,8 @@ pub fn params_from_kwargs(
     Ok(params)
 }
 
-/// The parameters of `segment` on `profile` ("default", "thesis" or
-/// "fast"; default "default"), as a dict.
+/// The parameters of `segment` on `profile` ("default", "thesis", "fast"
+/// or "large"; default "default"), as a dict.
 #[pyfunction]
 #[pyo3(signature = (profile=None), text_signature = "(profile=\"default\")")]
 pub fn default_params<'py>(

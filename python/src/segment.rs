@@ -32,9 +32,10 @@ use std::fmt::Write as _;
 /// profile : str, default "default"
 ///     The named parameter set that gives every key not passed: "default"
 ///     (the defaults below), "thesis" (the thesis text's Algorithm 1:
-///     method="semical", minimal_solver="eight-point") or "fast" (fewer
+///     method="semical", minimal_solver="eight-point"), "fast" (fewer
 ///     samples and IRLS iterations, a few times faster, somewhat less
-///     accurate). ``sctl.default_params(profile)`` lists its values.
+///     accurate) or "large" (1 000 matches and more: localized sampling,
+///     clusters under 2 % of the matches dropped). ``sctl.default_params(profile)`` lists its values.
 /// seed : int, default 12345
 ///     Seed of the hypothesis sampling. The labels depend on the input, the
 ///     parameters and the seed only (not on the number of threads).
@@ -70,7 +71,7 @@ use std::fmt::Write as _;
 ///     - linkage = "t-linkage"       ("t-linkage" or "j-linkage")
 ///     - min_cluster_size = 8        (smaller clusters become outliers)
 ///     - size_rule = "min-size"      ("min-size", "largest-gap" or {"relative-min": f})
-///     - final_assignment = "none"   ("none", "refit": refitted cluster models, nearest within thr_px, or "merge": clusters one model explains joined)
+///     - final_assignment = "merge"  ("merge": clusters one model explains joined, "none", or "refit": refitted cluster models, nearest within thr_px)
 ///     - duplicate_filter = "none"   ("none", or "same-inliers": one hypothesis per distinct inlier set)
 ///     - max_memory_mb = 0           (> 0: refuse a clustering that would need more memory, MB)
 ///

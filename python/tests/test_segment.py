@@ -215,7 +215,7 @@ def test_profile_gives_every_key_not_passed(synthetic):
 @pytest.mark.parametrize("profile", ["quick", "Fast", 3, ""])
 def test_unknown_profile_raises_value_error_listing_the_profiles(synthetic, profile):
     scene = sctl.load_hopef(synthetic[0])
-    message = r"`profile`.*the profiles are: default, thesis, fast"
+    message = r"`profile`.*the profiles are: default, thesis, fast, large"
     with pytest.raises(ValueError, match=message):
         sctl.segment(scene["x1"], scene["x2"], scene["image_size"], profile=profile)
     with pytest.raises(ValueError, match=message):

@@ -171,14 +171,14 @@ fn bad_inputs_fail_with_the_file_and_the_problem() {
     );
     bad_config(
         "[pipeline]\nprofile = \"quick\"\n",
-        "params.toml:2: pipeline.profile: unknown variant `quick`, expected one of `default`, `thesis`, `fast`",
+        "params.toml:2: pipeline.profile: unknown variant `quick`, expected one of `default`, `thesis`, `fast`, `large`",
     );
     segment_1024x768(&matches)
         .args(["--profile", "quick"])
         .assert()
         .failure()
         .stderr(predicate::str::contains(
-            "unknown profile `quick`; the profiles are: default, thesis, fast",
+            "unknown profile `quick`; the profiles are: default, thesis, fast, large",
         ));
     // A memory bound below the clustering's need stops at once and says
     // what it would need: the quick scene's 150 matches at M 20 000 need

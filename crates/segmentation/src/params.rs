@@ -22,9 +22,10 @@ pub use crate::weight_sets::{WeightPreset, WeightSets};
 /// between the thesis text and the reference code).
 ///
 /// The defaults are the best configuration measured (results/README.md,
-/// "Minimal solvers"): hypotheses from five-point samples as essential
-/// matrices at the focal prior (the one camera enters the hypotheses), no
-/// focal filter, and the thesis's Table 1 values for everything else.
+/// "Minimal solvers" and "Real-sized scenes"): hypotheses from five-point
+/// samples as essential matrices at the focal prior (the one camera enters
+/// the hypotheses), no focal filter, clusters that one model explains
+/// merged, and the thesis's Table 1 values for everything else.
 /// [`Params::thesis`] gives the thesis text's semi-calibrated method; the
 /// reference implementation's AdelaideRMF parameters are
 /// `num_samples = 5000, thr_px = 4.5, tau_diff = 0.15, tau_range = 0.25`
@@ -162,7 +163,7 @@ pub struct Params {
     /// clustering (Barath et al., CVPR 2023) end ([`crate::reassign`]);
     /// or `merge` (a cluster joins a larger one whose best-supported
     /// hypothesis explains [`crate::MERGE_SHARE`] of its matches,
-    /// [`crate::merge_explained`]). Default `none`.
+    /// [`crate::merge_explained`]). Default `merge` (the thesis: `none`).
     pub final_assignment: FinalAssignment,
     /// Which kept hypotheses enter the preferences (step 7): `none` (all,
     /// the thesis) or `same-inliers` (one per distinct inlier set,
@@ -187,6 +188,7 @@ impl Default for Params {
         Self {
             minimal_solver: MinimalSolver::FivePoint,
             method: Method::Baseline,
+            final_assignment: FinalAssignment::Merge,
             ..Self::thesis()
         }
     }

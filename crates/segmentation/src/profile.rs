@@ -1,18 +1,21 @@
 //! Named parameter sets ([`Profile`]): the starting point that a user's
 //! own keys then override.
 
-use crate::{MinimalSolver, Params};
+use crate::{MinimalSolver, Params, Sampling, SizeRule};
 
 /// A named set of [`Params`].
 ///
 /// * `default`: [`Params::default`], the most accurate configuration
 ///   measured (five-point hypotheses at the focal prior, no focal filter,
-///   Table 1 values);
+///   merged clusters, Table 1 values);
 /// * `thesis`: [`Params::thesis`], the thesis text's semi-calibrated
 ///   Algorithm 1;
 /// * `fast`: [`Params::fast`], M 1000 and one IRLS iteration: four to
 ///   five times cheaper than `default` (results/README.md, "A fast
-///   profile").
+///   profile");
+/// * `large`: [`Params::large`], for scenes of 1 000 matches and more:
+///   localized sampling and a minimum cluster size of 2 % of N
+///   (results/README.md, "Real-sized scenes").
 ///
 /// ```
 /// use segmentation::{Params, Profile};
@@ -34,11 +37,18 @@ pub enum Profile {
     Thesis,
     /// [`Params::fast`].
     Fast,
+    /// [`Params::large`].
+    Large,
 }
 
 impl Profile {
     /// Every profile.
-    pub const ALL: [Profile; 3] = [Profile::Default, Profile::Thesis, Profile::Fast];
+    pub const ALL: [Profile; 4] = [
+        Profile::Default,
+        Profile::Thesis,
+        Profile::Fast,
+        Profile::Large,
+    ];
 
     /// The profile's parameters.
     pub fn params(self) -> Params {
@@ -46,15 +56,17 @@ impl Profile {
             Profile::Default => Params::default(),
             Profile::Thesis => Params::thesis(),
             Profile::Fast => Params::fast(),
+            Profile::Large => Params::large(),
         }
     }
 
-    /// The profile's name (`default`, `thesis`, `fast`).
+    /// The profile's name (`default`, `thesis`, `fast`, `large`).
     pub fn name(self) -> &'static str {
         match self {
             Profile::Default => "default",
             Profile::Thesis => "thesis",
             Profile::Fast => "fast",
+            Profile::Large => "large",
         }
     }
 
@@ -75,6 +87,19 @@ impl Params {
             minimal_solver: MinimalSolver::FivePoint,
             num_samples: 1000,
             irls_iters: 1,
+            ..Self::default()
+        }
+    }
+
+    /// The `large` profile, for real image pairs of 1 000–5 000 matches
+    /// with small movers: the default pipeline with localized sampling
+    /// (NAPSAC) and clusters of fewer than 2 % of the matches dropped
+    /// (`size_rule = { relative-min = 0.02 }`), chosen on the kitti-real
+    /// validation scenes (results/README.md, "Real-sized scenes").
+    pub fn large() -> Self {
+        Self {
+            sampling: Sampling::Localized,
+            size_rule: SizeRule::RelativeMin(0.02),
             ..Self::default()
         }
     }

@@ -484,12 +484,13 @@ fn segmenting_with_the_final_assignment_recovers_noise_free_labels() {
 }
 
 #[test]
-fn the_defaults_keep_the_clusterings_labels() {
+fn without_a_final_assignment_the_labels_are_the_clusterings() {
     use clustering::ClusteringParams;
-    use segmentation::generate_hypotheses;
+    use segmentation::{generate_hypotheses, FinalAssignment};
     let scene = quick_scene(2, 901);
     let params = Params {
         num_samples: 300,
+        final_assignment: FinalAssignment::None,
         ..Params::default()
     };
     let seg = segment(&scene, &params).unwrap();

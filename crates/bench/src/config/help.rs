@@ -26,7 +26,7 @@ EXPERIMENT FILE (TOML)
                                hypotheses at the focal prior without the focal
                                filter; the thesis text: method = \"semical\",
                                minimal_solver = \"eight-point\"; Table 1 values)
-  profile = \"default\"          default | thesis | fast: the values of every key
+  profile = \"default\"          default | thesis | fast | large: the values of every key
                                not given here (default: those below; thesis:
                                the thesis text's; fast: fewer samples and IRLS
                                iterations). Not a [sweep] key
@@ -65,7 +65,7 @@ EXPERIMENT FILE (TOML)
   min_cluster_size = 8         smaller clusters become outliers
   size_rule = \"min-size\"       min-size | largest-gap (cut the sorted sizes at the
                                largest ratio) | { relative-min = 0.01 } (>= f N points)
-  final_assignment = \"none\"   none | refit (IRLS refit of each cluster, then
+  final_assignment = \"merge\"  none (the thesis) | refit (IRLS refit of each cluster, then
                                each match to its nearest model within thr_px)
                                | merge (a cluster joins a larger one whose best
                                hypothesis explains 80 % of its matches)

@@ -5,8 +5,7 @@ use super::{parse_toml, ConfigError};
 use segmentation::{
     DuplicateFilter, EightPoint, FinalAssignment, FocalSolver, ImplausibleFocal, IrlsFit, Linkage,
     LocalTest, Method, MinimalSolutions, MinimalSolver, OnFailure, ParamError, Params, Profile,
-    Sampling,
-    SizeRule, WeightSets,
+    Sampling, SizeRule, WeightSets,
 };
 use serde::{Deserialize, Serialize};
 use std::path::Path;

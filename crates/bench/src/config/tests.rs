@@ -81,7 +81,7 @@ fn sampling_and_final_assignment_read_and_reject_bad_values() {
     assert_eq!(c.pipeline.sampling, segmentation::Sampling::Uniform);
     assert_eq!(
         c.pipeline.final_assignment,
-        segmentation::FinalAssignment::None
+        segmentation::FinalAssignment::Merge
     );
     let c = parse(&format!(
         "{BASE}[pipeline]\nsampling = \"localized\"\nfinal_assignment = \"refit\"\n"
@@ -268,7 +268,7 @@ fn bad_profile_and_errors_beside_it_name_key_and_line() {
         err.starts_with("exp.toml:6: pipeline.profile: unknown variant `quick`"),
         "{err}"
     );
-    for name in ["default", "thesis", "fast"] {
+    for name in ["default", "thesis", "fast", "large"] {
         assert!(err.contains(&format!("`{name}`")), "{err}");
     }
     let err = parse(&format!("{BASE}[pipeline]\nprofile = \"fast\"\nthr = 3\n"))
