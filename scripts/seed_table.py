@@ -2,8 +2,8 @@
 """A multi-seed design table of results/README.md from one run: for each
 design (parameter values that select its rows), ME per seed, its mean and
 standard deviation over seeds, ME over all points, the one-tailed Wilcoxon
-p-value of "better than the reference" pooled over every (scene, seed) pair
-(computed by `sctl wilcoxon`), the scenes better / worse by their mean over
+p-values of "better" and of "worse than the reference" pooled over every
+(scene, seed) pair (computed by `sctl wilcoxon`), the scenes better / worse by their mean over
 seeds, and the median and mean seconds per scene (timings.csv).
 
     python3 scripts/seed_table.py SCTL RUN_DIR REFERENCE LABEL=key=value[,key=value] ...
@@ -35,15 +35,20 @@ def by_scene_seed(rows, metric):
     return {(r["scene"], r.get("seed", "")): 100 * float(r[metric]) for r in rows}
 
 
-def pooled_p(sctl, reference, design):
-    """One-tailed p of "the design's ME is lower" over the common pairs."""
+def pooled_p(sctl, reference, design, alternative):
+    """One-tailed p of the design's ME being lower (`greater`: the
+    reference's is larger) or higher (`less`) over the common pairs; None
+    when every pair is equal."""
     keys = sorted(set(reference) & set(design))
+    if all(reference[k] == design[k] for k in keys):
+        return None
     with tempfile.TemporaryDirectory() as tmp:
         a, b = Path(tmp) / "a.txt", Path(tmp) / "b.txt"
         a.write_text("\n".join(str(reference[k]) for k in keys) + "\n")
         b.write_text("\n".join(str(design[k]) for k in keys) + "\n")
         out = subprocess.run(
-            [sctl, "wilcoxon", "--baseline", str(a), "--method", str(b)],
+            [sctl, "wilcoxon", "--baseline", str(a), "--method", str(b),
+             "--alternative", alternative],
             capture_output=True, text=True, check=True,
         ).stdout
     return json.loads(out)["p_value"]
@@ -68,7 +73,7 @@ def main():
     reference = by_scene_seed(select(rows, parse_where(reference_spec)), "me")
     seeds = sorted({r.get("seed", "") for r in rows})
     print("| design | " + " | ".join(f"seed {s}" for s in seeds)
-          + " | ME mean (std over seeds) | ME all | p (better), pairs | scenes better / worse | s/scene median (mean) |")
+          + " | ME mean (std over seeds) | ME all | p better / worse, pairs | scenes better / worse | s/scene median (mean) |")
     print("|" + "---|" * (len(seeds) + 6))
     for label, spec in designs:
         where = parse_where(spec)
@@ -83,11 +88,17 @@ def main():
         if label == "reference":
             p, wins = "", ""
         else:
-            p = pooled_p(sctl, reference, me)
+            better_p = pooled_p(sctl, reference, me, "greater")
+            worse_p = pooled_p(sctl, reference, me, "less")
             ref_scene, own_scene = scene_means(reference), scene_means(me)
             better = sum(own_scene[s] < ref_scene[s] - 1e-9 for s in own_scene)
             worse = sum(own_scene[s] > ref_scene[s] + 1e-9 for s in own_scene)
-            p = f"{p:.2g}, {len(set(reference) & set(me))}"
+            pairs = len(set(reference) & set(me))
+            p = (
+                f"{better_p:.2g} / {worse_p:.2g}, {pairs}"
+                if better_p is not None
+                else f"all {pairs} equal"
+            )
             wins = f"{better} / {worse}"
         print(
             f"| {label} ({spec}) | "

@@ -2,34 +2,14 @@
 //! filter, the memory bound and the profiles, on synthetic scenes of the
 //! `quick` preset.
 
-use datasets::synthetic::Preset;
-use datasets::Scene;
+mod support;
+
 use geometry::sampson_distances_squared;
 use segmentation::{
-    generate_hypotheses, segment, segment_with, DuplicateFilter, HypothesisStatus, Matches, Method,
-    Params, Profile, SegmentationError, SupportTracker,
+    generate_hypotheses, segment, segment_with, DuplicateFilter, HypothesisStatus, Method, Params,
+    Profile, SegmentationError, SupportTracker,
 };
-
-fn quick_scene(category: u32, index: u32) -> Scene {
-    Preset::Quick
-        .params()
-        .generate_scene(1, category, index)
-        .unwrap()
-        .scene
-}
-
-fn matches(scene: &Scene) -> Matches<'_> {
-    Matches::new(&scene.points1, &scene.points2, scene.image_size)
-        .with_principal_point(scene.principal_point)
-}
-
-fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap()
-        .install(f)
-}
+use support::{in_pool, matches, quick_scene};
 
 fn adaptive(batch: usize, tolerance: f64) -> Params {
     Params {

@@ -1,20 +1,14 @@
 //! Algorithm 1 end to end on synthetic scenes of the `quick` preset.
 
-use datasets::synthetic::Preset;
+mod support;
+
 use datasets::Scene;
 use metrics::ClusteringMetrics;
 use segmentation::{
-    EightPoint, FocalSolver, HypothesisStatus, Linkage, LocalTest, Matches, Method, OnFailure,
-    Params, Segmentation, SegmentationError,
+    EightPoint, FocalSolver, HypothesisStatus, Linkage, LocalTest, Method, OnFailure, Params,
+    Segmentation, SegmentationError,
 };
-
-fn quick_scene(category: u32, index: u32) -> Scene {
-    Preset::Quick
-        .params()
-        .generate_scene(1, category, index)
-        .unwrap()
-        .scene
-}
+use support::{in_pool, matches, quick_scene};
 
 /// The thesis's pipeline (8-point hypotheses) with `method` and M 300.
 fn config(method: Method) -> Params {
@@ -25,21 +19,8 @@ fn config(method: Method) -> Params {
     }
 }
 
-fn matches(scene: &Scene) -> Matches<'_> {
-    Matches::new(&scene.points1, &scene.points2, scene.image_size)
-        .with_principal_point(scene.principal_point)
-}
-
 fn segment(scene: &Scene, params: &Params) -> Result<Segmentation, SegmentationError> {
     segmentation::segment(&matches(scene), params)
-}
-
-fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap()
-        .install(f)
 }
 
 fn me(scene: &Scene, seg: &Segmentation) -> f64 {
@@ -371,7 +352,7 @@ fn an_abstaining_filter_gives_the_baselines_labels_bit_for_bit() {
 /// Scene `<category>/<index>` of the `quick` preset without pixel noise
 /// (its gross outliers kept).
 fn noise_free_scene(category: u32, index: u32) -> Scene {
-    use datasets::synthetic::{PresetParams, SyntheticParams};
+    use datasets::synthetic::{Preset, PresetParams, SyntheticParams};
     let PresetParams::Synthetic(quick) = Preset::Quick.params() else {
         panic!("quick is a synthetic preset");
     };
