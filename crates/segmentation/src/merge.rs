@@ -27,7 +27,13 @@ impl InlierBits {
 
     /// Adds a hypothesis: the matches whose residual is `≤ tau`.
     pub fn push(&mut self, residuals: &[f64], tau: f64) {
-        self.bits.extend(inlier_words(residuals, tau));
+        self.push_words(inlier_words(residuals, tau));
+    }
+
+    /// Adds a hypothesis given as [`inlier_words`].
+    pub(crate) fn push_words(&mut self, words: Vec<u64>) {
+        debug_assert_eq!(words.len(), self.words);
+        self.bits.extend(words);
     }
 
     fn len(&self) -> usize {

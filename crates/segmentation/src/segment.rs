@@ -1,6 +1,7 @@
 //! Algorithm 1 end to end (method.md steps 1–9), and steps 5–9 on
 //! hypotheses and focals computed beforehand.
 
+use crate::assignment::members;
 use crate::merge::inlier_words;
 use crate::{
     estimate_hypothesis_focals, focal_filter, generate_hypotheses, merge_explained, reassign,
@@ -214,21 +215,26 @@ fn cluster_kept(
     let tau = params.thr_px * params.thr_px;
     let mut builder = clustering_params.preference_builder(points.len(), tau)?;
     let mut residuals = vec![0.0; points.len()];
-    let mut seen = InlierSets::new(params.duplicate_filter, tau);
-    let mut inliers = InlierBits::new(points.len());
+    // The inlier sets, when the duplicate filter or the merge needs them.
+    let dedup = params.duplicate_filter == DuplicateFilter::SameInliers;
     let merge = params.final_assignment == FinalAssignment::Merge;
+    let mut seen = HashSet::new();
+    let mut inliers = InlierBits::new(points.len());
     for &j in kept {
         let Some(model) = generated.models[j].as_ref() else {
             continue;
         };
         sampson_distances_squared(model, points, &mut residuals);
-        if seen.is_duplicate(&residuals) {
-            segmentation.hypotheses[j].status = HypothesisStatus::Duplicate;
-            segmentation.counts.kept -= 1;
-            continue;
-        }
-        if merge {
-            inliers.push(&residuals, tau);
+        if dedup || merge {
+            let words = inlier_words(&residuals, tau);
+            if dedup && !seen.insert(words.clone()) {
+                segmentation.hypotheses[j].status = HypothesisStatus::Duplicate;
+                segmentation.counts.kept -= 1;
+                continue;
+            }
+            if merge {
+                inliers.push_words(words);
+            }
         }
         builder.push_residuals(&residuals)?;
     }
@@ -244,25 +250,17 @@ fn cluster_kept(
     let t = Instant::now();
     let (labels, clusters) = match params.final_assignment {
         FinalAssignment::None => (clustering.labels, clustering.clusters_after_filter),
-        FinalAssignment::Refit => {
-            let labels = reassign(
-                points,
-                &clustering.labels,
-                clustering.clusters_after_filter,
-                params,
-            );
-            let clusters = labels.iter().map(|&l| l + 1).max().unwrap_or(0) as usize;
-            (labels, clusters)
-        }
-        FinalAssignment::Merge => {
-            let labels = merge_explained(
-                &clustering.labels,
-                clustering.clusters_after_filter,
-                &inliers,
-            );
-            let clusters = labels.iter().map(|&l| l + 1).max().unwrap_or(0) as usize;
-            (labels, clusters)
-        }
+        FinalAssignment::Refit => with_count(reassign(
+            points,
+            &clustering.labels,
+            clustering.clusters_after_filter,
+            params,
+        )),
+        FinalAssignment::Merge => with_count(merge_explained(
+            &clustering.labels,
+            clustering.clusters_after_filter,
+            &inliers,
+        )),
     };
     segmentation.clusters = cluster_models(points, &labels, clusters);
     segmentation.timings.cluster_fit = t.elapsed().as_secs_f64();
@@ -271,32 +269,11 @@ fn cluster_kept(
     Ok(())
 }
 
-/// The inlier sets (`r ≤ tau`) of the hypotheses pushed so far, for
-/// [`DuplicateFilter::SameInliers`]; with [`DuplicateFilter::None`] nothing
-/// is a duplicate.
-struct InlierSets {
-    filter: DuplicateFilter,
-    tau: f64,
-    seen: HashSet<Vec<u64>>,
-}
-
-impl InlierSets {
-    fn new(filter: DuplicateFilter, tau: f64) -> Self {
-        Self {
-            filter,
-            tau,
-            seen: HashSet::new(),
-        }
-    }
-
-    /// Whether the inlier set of `residuals` was seen before (it is
-    /// recorded when not).
-    fn is_duplicate(&mut self, residuals: &[f64]) -> bool {
-        if self.filter == DuplicateFilter::None {
-            return false;
-        }
-        !self.seen.insert(inlier_words(residuals, self.tau))
-    }
+/// Labels numbered 0, 1, … by first appearance (−1 outliers) with their
+/// number of clusters.
+fn with_count(labels: Vec<i32>) -> (Vec<i32>, usize) {
+    let clusters = labels.iter().map(|&l| l + 1).max().unwrap_or(0) as usize;
+    (labels, clusters)
 }
 
 /// The share of non-zero preferences assumed by the memory check made
@@ -316,13 +293,7 @@ fn clustering_params(params: &Params) -> ClusteringParams {
 
 /// The 8-point F of each cluster `0..clusters` of `labels`, by label.
 fn cluster_models(points: &Correspondences, labels: &[i32], clusters: usize) -> Vec<ClusterModel> {
-    let mut members: Vec<Vec<usize>> = vec![Vec::new(); clusters];
-    for (i, &label) in labels.iter().enumerate() {
-        if let Ok(label) = usize::try_from(label) {
-            members[label].push(i);
-        }
-    }
-    members
+    members(labels, clusters)
         .iter()
         .enumerate()
         .map(|(label, idx)| ClusterModel {
