@@ -51,10 +51,9 @@ pub fn profile_from(value: Option<&Bound<'_, PyAny>>) -> PyResult<Profile> {
         .ok()
         .and_then(|name| Profile::from_name(&name))
         .ok_or_else(|| {
-            let names: Vec<&str> = Profile::ALL.iter().map(|p| p.name()).collect();
             value_error(format!(
                 "invalid value for `profile`: {value}; the profiles are: {}",
-                names.join(", ")
+                Profile::names()
             ))
         })
 }

@@ -74,6 +74,15 @@ impl Profile {
     pub fn from_name(name: &str) -> Option<Self> {
         Self::ALL.into_iter().find(|p| p.name() == name)
     }
+
+    /// Every profile's name, comma-separated, for error messages.
+    ///
+    /// ```
+    /// assert_eq!(segmentation::Profile::names(), "default, thesis, fast, large");
+    /// ```
+    pub fn names() -> String {
+        Self::ALL.map(Self::name).join(", ")
+    }
 }
 
 impl Params {

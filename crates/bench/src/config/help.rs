@@ -29,7 +29,8 @@ EXPERIMENT FILE (TOML)
   profile = \"default\"          default | thesis | fast | large: the values of every key
                                not given here (default: those below; thesis:
                                the thesis text's; fast: fewer samples and IRLS
-                               iterations). Not a [sweep] key
+                               iterations; large: localized sampling, clusters
+                               under 2 % of N dropped). Not a [sweep] key
   method = \"baseline\"          baseline (no focal filter) | semical (Algorithm 1)
   num_samples = 3000           M, minimal samples per scene (at most, adaptive)
   adaptive_batch = 0           > 0: draw M in batches of this many until a batch

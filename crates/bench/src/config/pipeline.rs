@@ -29,7 +29,8 @@ use std::path::Path;
 pub struct PipelineConfig {
     /// The named parameter set whose values the keys this table does not
     /// give take: `default` ([`Params::default`]), `thesis`
-    /// ([`Params::thesis`]) or `fast` ([`Params::fast`]). Applied when a
+    /// ([`Params::thesis`]), `fast` ([`Params::fast`]) or `large`
+    /// ([`Params::large`]). Applied when a
     /// file is read ([`PipelineConfig::load`],
     /// [`super::ExperimentConfig::parse`]): the other fields hold the
     /// resolved values. Not one of [`PIPELINE_KEYS`] (it cannot be swept).
