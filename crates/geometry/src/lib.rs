@@ -55,7 +55,7 @@ pub use polish::{polish_fundamental, Polished, POLISH_LOSS_SCALE_PX, POLISH_MAX_
 pub use sampson::{
     frob_distance, sampson_consensus, sampson_distance, sampson_distance_signed,
     sampson_distance_squared, sampson_distances_squared, sampson_residuals_signed,
-    symmetric_epipolar_distance,
+    symmetric_epipolar_distance, SampsonModels,
 };
 pub use seven_point::{seven_point, SEVEN_POINT_SAMPLE};
 pub use six_point_focal::{six_point_focal, FocalSolution, SIX_POINT_SAMPLE};

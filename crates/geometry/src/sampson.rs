@@ -58,13 +58,25 @@ pub(crate) fn rescale_power_of_two(f: &Matrix3<f64>) -> Matrix3<f64> {
 /// epipolar lines `F x1 = (a, b, ·)`, `Fᵀ x2 = (c, d, ·)`.
 #[inline(always)]
 fn epipolar_lines(f: &Matrix3<f64>, x1: f64, y1: f64, x2: f64, y2: f64) -> [f64; 5] {
+    lines_of_entries(&row_major(f), x1, y1, x2, y2)
+}
+
+/// The entries of `f` row by row, `[f00, f01, f02, f10, …, f22]`.
+#[inline(always)]
+fn row_major(f: &Matrix3<f64>) -> [f64; 9] {
+    std::array::from_fn(|k| f[(k / 3, k % 3)])
+}
+
+/// [`epipolar_lines`] of the matrix with row-major entries `f`.
+#[inline(always)]
+fn lines_of_entries(f: &[f64; 9], x1: f64, y1: f64, x2: f64, y2: f64) -> [f64; 5] {
     // F x1
-    let a = f[(0, 0)] * x1 + f[(0, 1)] * y1 + f[(0, 2)];
-    let b = f[(1, 0)] * x1 + f[(1, 1)] * y1 + f[(1, 2)];
-    let c3 = f[(2, 0)] * x1 + f[(2, 1)] * y1 + f[(2, 2)];
+    let a = f[0] * x1 + f[1] * y1 + f[2];
+    let b = f[3] * x1 + f[4] * y1 + f[5];
+    let c3 = f[6] * x1 + f[7] * y1 + f[8];
     // Fᵀ x2
-    let c = f[(0, 0)] * x2 + f[(1, 0)] * y2 + f[(2, 0)];
-    let d = f[(0, 1)] * x2 + f[(1, 1)] * y2 + f[(2, 1)];
+    let c = f[0] * x2 + f[3] * y2 + f[6];
+    let d = f[1] * x2 + f[4] * y2 + f[7];
     [x2 * a + y2 * b + c3, a, b, c, d]
 }
 
@@ -79,7 +91,12 @@ fn epipolar_terms(f: &Matrix3<f64>, p1: [f64; 2], p2: [f64; 2]) -> (f64, f64, f6
 /// (the gradient summed in that order, as both batch forms need it).
 #[inline(always)]
 fn batch_terms(f: &Matrix3<f64>, x1: f64, y1: f64, x2: f64, y2: f64) -> (f64, f64) {
-    let [e, a, b, c, d] = epipolar_lines(f, x1, y1, x2, y2);
+    gradient_terms(epipolar_lines(f, x1, y1, x2, y2))
+}
+
+/// `(e, a² + b² + c² + d²)` from `[e, a, b, c, d]`, summed in that order.
+#[inline(always)]
+fn gradient_terms([e, a, b, c, d]: [f64; 5]) -> (f64, f64) {
     (e, a * a + b * b + c * c + d * d)
 }
 
@@ -156,6 +173,62 @@ pub fn sampson_distances_squared(f: &Matrix3<f64>, points: &Correspondences, out
         let (e, g) = batch_terms(&f, x1[i], y1[i], x2[i], y2[i]);
         // A compare-and-blend: vectorises.
         out[i] = ratio(e, e * e, g);
+    }
+}
+
+/// Many fundamental matrices, each rescaled once ([`rescale_power_of_two`])
+/// and stored entry by entry, for the squared Sampson distances of one match
+/// to all of them: the point-major form of [`sampson_distances_squared`],
+/// equal to it bit for bit (the same operations in the same order).
+///
+/// ```
+/// use geometry::{sampson_distances_squared, Correspondences, SampsonModels};
+/// use nalgebra::Matrix3;
+/// let fs = [
+///     Matrix3::new(0.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0),
+///     Matrix3::new(0.0, 0.0, 1.0, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0),
+/// ];
+/// let c = Correspondences::new(&[[5.0, 1.0]], &[[9.0, 3.0]]).unwrap();
+/// let mut row = [0.0; 2];
+/// SampsonModels::new(&fs).distances_squared(c.point1(0), c.point2(0), &mut row);
+/// let mut column = [0.0; 1];
+/// sampson_distances_squared(&fs[1], &c, &mut column);
+/// assert_eq!(row[1].to_bits(), column[0].to_bits());
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct SampsonModels {
+    /// `entries[j]`: the row-major entries of model j, rescaled.
+    entries: Vec<[f64; 9]>,
+}
+
+impl SampsonModels {
+    /// The models `fs`, in that order.
+    pub fn new(fs: &[Matrix3<f64>]) -> Self {
+        Self {
+            entries: fs
+                .iter()
+                .map(|f| row_major(&rescale_power_of_two(f)))
+                .collect(),
+        }
+    }
+
+    /// Number of models.
+    pub fn len(&self) -> usize {
+        self.entries.len()
+    }
+
+    /// Whether there are no models.
+    pub fn is_empty(&self) -> bool {
+        self.entries.is_empty()
+    }
+
+    /// `out[j]`: the squared Sampson distance (Eq. 23, px²) of the match
+    /// `p1 ↔ p2` to model j, for the first `min(out.len(), len())` models.
+    pub fn distances_squared(&self, p1: [f64; 2], p2: [f64; 2], out: &mut [f64]) {
+        for (r, f) in out.iter_mut().zip(&self.entries) {
+            let (e, g) = gradient_terms(lines_of_entries(f, p1[0], p1[1], p2[0], p2[1]));
+            *r = ratio(e, e * e, g);
+        }
     }
 }
 

@@ -6,7 +6,7 @@ mod common;
 use geometry::{
     frob_distance, sampson_consensus, sampson_distance, sampson_distance_signed,
     sampson_distance_squared, sampson_distances_squared, sampson_residuals_signed,
-    symmetric_epipolar_distance, Correspondences,
+    symmetric_epipolar_distance, Correspondences, SampsonModels,
 };
 use nalgebra::{Matrix3, Vector3};
 use proptest::prelude::*;
@@ -86,6 +86,31 @@ proptest! {
             prop_assert!(close(squared[i], expected), "{}: {} vs {}", i, squared[i], expected);
             prop_assert!(close(signed[i].abs(), expected.sqrt()));
             prop_assert!(close(signed[i], sampson_distance_signed(&g, p1[i], p2[i])));
+        }
+    }
+
+    /// The point-major form gives the column form's distances bit for bit,
+    /// whatever the models' scales (the preference matrix depends on it).
+    #[test]
+    fn models_form_equals_the_column_form_bit_for_bit(
+        fs in prop::collection::vec((matrix(), factor()), 1..6),
+        pts in prop::collection::vec((pixel(), pixel()), 1..30),
+    ) {
+        let fs: Vec<Matrix3<f64>> = fs.into_iter().map(|(f, k)| f * k).collect();
+        let (p1, p2): (Vec<_>, Vec<_>) = pts.into_iter().unzip();
+        let c = Correspondences::new(&p1, &p2).unwrap();
+        let models = SampsonModels::new(&fs);
+        prop_assert_eq!(models.len(), fs.len());
+        let mut columns = vec![vec![0.0; p1.len()]; fs.len()];
+        for (f, column) in fs.iter().zip(&mut columns) {
+            sampson_distances_squared(f, &c, column);
+        }
+        let mut row = vec![f64::NAN; fs.len()];
+        for i in 0..p1.len() {
+            models.distances_squared(p1[i], p2[i], &mut row);
+            for (j, column) in columns.iter().enumerate() {
+                prop_assert_eq!(row[j].to_bits(), column[i].to_bits(), "point {}, model {}", i, j);
+            }
         }
     }
 
