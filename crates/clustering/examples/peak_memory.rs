@@ -1,7 +1,8 @@
 //! Peak memory of the clustering phase at a given size: builds the
 //! preferences of a realistic synthetic scene (several moving objects, 15 %
 //! outliers, hypotheses drawn around the motions, as in the benchmarks) one
-//! hypothesis at a time, exactly as the pipeline does, and clusters them.
+//! point at a time, exactly as the pipeline does, and clusters them on the
+//! matrix it hands over (`try_cluster_owned`).
 //!
 //! ```text
 //! cargo build --release -p clustering --example peak_memory
@@ -17,7 +18,7 @@
 mod scene;
 
 use clustering::{ClusteringParams, Preferences};
-use geometry::sampson_distances_squared;
+use geometry::SampsonModels;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::alloc::{GlobalAlloc, Layout, System};
@@ -72,22 +73,20 @@ fn main() {
     let params = ClusteringParams::default();
 
     let t = Instant::now();
-    let mut builder = params.preference_builder(n, tau).expect("valid tau");
-    let mut residuals = vec![0.0; n];
-    for f in &hypotheses {
-        sampson_distances_squared(f, &scene.points, &mut residuals);
-        builder.push_residuals(&residuals).expect("valid residuals");
-    }
-    let preferences = builder.finish();
+    let models = SampsonModels::new(&hypotheses);
+    let points = &scene.points;
+    let preferences = Preferences::from_residual_rows(params.linkage, n, m, tau, |i, out| {
+        models.distances_squared(points.point1(i), points.point2(i), out)
+    })
+    .expect("valid residuals");
     let built = t.elapsed().as_secs_f64();
-    let Preferences::Continuous(p) = &preferences else {
-        unreachable!("T-Linkage builds continuous preferences")
-    };
-    let density = p.density();
+    let density = preferences.density();
     let after_build = (peak_rss_mb(), peak_heap_mb());
 
     let t = Instant::now();
-    let clustering = params.cluster(&preferences);
+    let clustering = params
+        .try_cluster_owned(preferences)
+        .expect("no memory bound");
     eprintln!(
         "N = {n}, M = {m}, density {density:.3}; {} clusters, {} kept; \
          preferences {built:.2} s, linkage {:.2} s; \

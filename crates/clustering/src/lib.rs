@@ -141,13 +141,43 @@ impl ClusteringParams {
     /// [`ClusteringParams::cluster`] after [`ClusteringParams::validate`] and
     /// [`ClusteringParams::check_memory`] at the matrix's own size and density.
     pub fn try_cluster(&self, preferences: &Preferences) -> Result<Clustering, ClusteringError> {
-        self.validate()?;
-        let (n, m, density) = match preferences {
-            Preferences::Continuous(p) => (p.n_points(), p.n_hypotheses(), p.density()),
-            Preferences::Binary(b) => (b.n_points(), b.n_hypotheses(), b.density()),
-        };
-        self.check_memory(n, m, density)?;
+        self.check_problem(preferences)?;
         Ok(self.cluster(preferences))
+    }
+
+    /// [`ClusteringParams::try_cluster`] on preferences it consumes: the
+    /// same clustering, but T-Linkage writes each merged vector over the
+    /// surviving cluster's row and frees the absorbed one instead of
+    /// copying rows, so the phase needs less memory.
+    pub fn try_cluster_owned(
+        &self,
+        preferences: Preferences,
+    ) -> Result<Clustering, ClusteringError> {
+        self.check_problem(&preferences)?;
+        let n = preferences.n_points();
+        let merges = match preferences {
+            Preferences::Continuous(p) => tlinkage::merge_sequence_owned(p),
+            Preferences::Binary(b) => jlinkage::merge_sequence(&b),
+        };
+        Ok(linkage::labels_from_merges(
+            n,
+            merges,
+            self.size_rule,
+            self.min_cluster_size,
+        ))
+    }
+
+    /// [`ClusteringParams::validate`], then
+    /// [`ClusteringParams::check_memory`] at the matrix's own size and
+    /// density.
+    fn check_problem(&self, preferences: &Preferences) -> Result<(), ClusteringError> {
+        self.validate()?;
+        self.check_memory(
+            preferences.n_points(),
+            preferences.n_hypotheses(),
+            preferences.density(),
+        )?;
+        Ok(())
     }
 
     /// Errors on a [`SizeRule::RelativeMin`] fraction outside `[0, 1]`.

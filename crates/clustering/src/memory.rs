@@ -2,20 +2,28 @@
 //! budget is refused at once ([`crate::ClusteringParams::check_memory`])
 //! instead of failing after minutes of work.
 //!
-//! The model counts the largest structures at their sizes (bytes):
+//! The model counts the largest structures at their sizes (bytes), for the
+//! pipeline's path: preferences built one point at a time
+//! ([`crate::Preferences::from_residual_rows`], rows at exactly their size)
+//! and clustered by [`crate::ClusteringParams::try_cluster_owned`] (merged
+//! vectors written over the rows):
 //!
 //! | structure | T-Linkage | J-Linkage |
 //! |---|---|---|
-//! | preferences | `12 · nnz` (u32 index + f64 value), ×2 while built (vector growth) | `N · ⌈M/64⌉ · 8`, ×3 (builder columns, matrix, cluster copy) |
-//! | merged clusters | `≤ 12 · nnz` (intersections of the rows) | — |
+//! | preferences | `12 · nnz` (u32 index + f64 value) | `N · ⌈M/64⌉ · 8`, ×2 (matrix, cluster copy) |
 //! | bound matrix | `2 · M · ⌈N⌉₁₆` (u16, hypothesis-major) | — |
 //! | heap | `N · (RUN_CAPACITY + 1) · 16` | same |
 //! | per-point scratch | `64 · N` | same |
 //!
-//! with `nnz = density · N · M` the non-zero preferences. It is an upper
-//! estimate of the phase alone (not of the caller's points and hypotheses):
-//! measured on the synthetic scenes of `examples/peak_memory.rs`, the whole
-//! process stays below it (see the crate README).
+//! with `nnz = density · N · M` the non-zero preferences. The other paths
+//! need more: the one-hypothesis-at-a-time [`crate::PreferenceBuilder`]'s
+//! rows grow by doubling (up to `12 · nnz` more, and J-Linkage's builder
+//! holds its columns too), and [`crate::ClusteringParams::try_cluster`],
+//! which leaves the caller's matrix untouched, copies the merged vectors
+//! (up to `12 · nnz` more). It is an estimate of the phase alone (not of
+//! the caller's points and hypotheses): on the synthetic scenes of
+//! `examples/peak_memory.rs` the whole process's heap peaks 1–2 MB above
+//! it, the scene's own data (see the crate README).
 
 use crate::heap::RUN_CAPACITY;
 use crate::Linkage;
@@ -52,12 +60,11 @@ pub fn required_memory(
     let bytes = match linkage {
         Linkage::TLinkage => {
             let nonzeros = density * n * m;
-            let preferences = 2.0 * BYTES_PER_NONZERO * nonzeros;
-            let merged = BYTES_PER_NONZERO * nonzeros;
+            let preferences = BYTES_PER_NONZERO * nonzeros;
             let bounds = 2.0 * m * (n / 16.0).ceil() * 16.0;
-            preferences + merged + bounds + heap + scratch
+            preferences + bounds + heap + scratch
         }
-        Linkage::JLinkage => 3.0 * n * (m / 64.0).ceil() * 8.0 + heap + scratch,
+        Linkage::JLinkage => 2.0 * n * (m / 64.0).ceil() * 8.0 + heap + scratch,
     };
     bytes.ceil() as u64
 }

@@ -109,6 +109,15 @@ fn the_default_rule_is_the_former_filter() {
     assert_eq!(c, cluster(&prefs, 8));
     assert_eq!(c.clusters_after_filter, 4);
     assert_eq!(params.try_cluster(&prefs).unwrap(), c);
+    assert_eq!(params.try_cluster_owned(prefs.clone()).unwrap(), c);
+    let largest_gap = ClusteringParams {
+        size_rule: SizeRule::LargestGap,
+        ..params
+    };
+    assert_eq!(
+        largest_gap.try_cluster_owned(prefs.clone()).unwrap(),
+        largest_gap.try_cluster(&prefs).unwrap()
+    );
 }
 
 #[test]
@@ -176,6 +185,10 @@ fn memory_bound_refuses_at_once_and_names_the_memory() {
     let prefs = Preferences::Continuous(blocks(&[3, 2]));
     assert!(matches!(
         tiny.try_cluster(&prefs),
+        Err(ClusteringError::MemoryBound { n_points: 5, .. })
+    ));
+    assert!(matches!(
+        tiny.try_cluster_owned(prefs),
         Err(ClusteringError::MemoryBound { n_points: 5, .. })
     ));
 }

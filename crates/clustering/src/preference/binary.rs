@@ -68,6 +68,11 @@ impl BinaryPreferenceMatrix {
         Ok(matrix)
     }
 
+    /// Sets row i to the bit set `words` (`words_per_row` words).
+    pub(super) fn set_row_bits(&mut self, i: usize, words: &[u64]) {
+        self.bits[i * self.words_per_row..(i + 1) * self.words_per_row].copy_from_slice(words);
+    }
+
     /// Sets `b_ij`.
     pub(super) fn set(&mut self, i: usize, j: usize, value: bool) {
         let word = &mut self.bits[i * self.words_per_row + j / 64];

@@ -8,9 +8,10 @@
 //! `r_ij` is the residual of point i to hypothesis j (in the pipeline the
 //! squared Sampson distance, Eq. 23, in px²) and `τ = thr_px²`.
 //!
-//! Both can be built from a closure `residual(i, j)` or one hypothesis at a
-//! time ([`PreferenceBuilder`]), so that no N × M residual matrix is ever
-//! stored.
+//! Both can be built from a closure `residual(i, j)`, one hypothesis at a
+//! time ([`PreferenceBuilder`]) or one point at a time, in parallel
+//! (`from_residual_rows`, whose rows are stored at exactly their size), so
+//! that no N × M residual matrix is ever stored.
 //!
 //! # Storage
 //! [`PreferenceMatrix`] stores each point's preference vector as sparse
@@ -26,10 +27,11 @@
 //!
 //! Files: the continuous matrix and the input checks here, the binary
 //! matrix in `binary.rs`, the one-hypothesis-at-a-time builder in
-//! `builder.rs`.
+//! `builder.rs`, the one-point-at-a-time construction in `rows.rs`.
 
 mod binary;
 mod builder;
+mod rows;
 
 pub use binary::BinaryPreferenceMatrix;
 pub use builder::{PreferenceBuilder, Preferences};
@@ -259,6 +261,12 @@ impl PreferenceMatrix {
         (&self.index[i], &self.value[i])
     }
 
+    /// The rows' lists, taken: `(index, value)` with `index[i]` the
+    /// hypotheses of point i (ascending) and `value[i]` their preferences.
+    pub(crate) fn into_rows(self) -> (Vec<Vec<u32>>, Vec<Vec<f64>>) {
+        (self.index, self.value)
+    }
+
     /// The N preferences of hypothesis j (column j). Panics if `j ≥ M`.
     pub fn column(&self, j: usize) -> Vec<f64> {
         (0..self.n_points).map(|i| self.get(i, j)).collect()
@@ -267,6 +275,14 @@ impl PreferenceMatrix {
     /// Number of non-zero preferences.
     pub fn nonzeros(&self) -> usize {
         self.index.iter().map(Vec::len).sum()
+    }
+
+    /// Entries allocated but not used by the rows (their spare capacity):
+    /// 0 when built by [`Preferences::from_residual_rows`].
+    pub fn spare_capacity(&self) -> usize {
+        let index: usize = self.index.iter().map(|r| r.capacity() - r.len()).sum();
+        let value: usize = self.value.iter().map(|r| r.capacity() - r.len()).sum();
+        index + value
     }
 
     /// Fraction of non-zero entries (0 for an empty matrix).

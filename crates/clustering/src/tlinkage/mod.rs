@@ -54,6 +54,13 @@ pub(crate) fn merge_sequence(preferences: &PreferenceMatrix) -> Vec<Merge> {
     agglomerate(ContinuousState::new(preferences), RUN_CAPACITY)
 }
 
+/// [`merge_sequence`] on preferences it may consume: each merge writes the
+/// merged vector over the surviving cluster's row and frees the absorbed
+/// one, so the clustering copies no row. The merges are the same.
+pub(crate) fn merge_sequence_owned(preferences: PreferenceMatrix) -> Vec<Merge> {
+    agglomerate(ContinuousState::owning(preferences), RUN_CAPACITY)
+}
+
 /// Marks a slot that holds no active cluster.
 const DEAD: u32 = u32::MAX;
 /// The bound matrix is compacted when half of its slots are dead and it has
@@ -98,7 +105,8 @@ fn exact_dot(p_index: &[u32], p_value: &[f64], q_index: &[u32], q_value: &[f64])
 /// quarter of an f64 one, so the sweeps stay in cache.
 struct ContinuousState<'a> {
     n: usize,
-    /// Borrowed from the matrix until the cluster first absorbs another.
+    /// Borrowed from the matrix until the cluster first absorbs another
+    /// (owned from the start by [`ContinuousState::owning`]).
     index: Vec<Cow<'a, [u32]>>,
     value: Vec<Cow<'a, [f64]>>,
     norms: Vec<f64>,
@@ -121,21 +129,40 @@ struct ContinuousState<'a> {
 }
 
 impl<'a> ContinuousState<'a> {
+    /// The singletons of `preferences`, borrowing its rows.
     fn new(preferences: &'a PreferenceMatrix) -> Self {
-        let n = preferences.n_points();
+        let (index, value) = (0..preferences.n_points())
+            .map(|i| {
+                let (hypotheses, values) = preferences.row_support(i);
+                (Cow::Borrowed(hypotheses), Cow::Borrowed(values))
+            })
+            .unzip();
+        Self::from_rows(preferences.n_hypotheses(), index, value)
+    }
+
+    /// The singletons of `preferences`, taking its rows.
+    fn owning(preferences: PreferenceMatrix) -> Self {
         let m = preferences.n_hypotheses();
+        let (index, value) = preferences.into_rows();
+        Self::from_rows(
+            m,
+            index.into_iter().map(Cow::Owned).collect(),
+            value.into_iter().map(Cow::Owned).collect(),
+        )
+    }
+
+    /// The singletons of the rows `index[i]`, `value[i]` (M hypotheses).
+    fn from_rows(m: usize, index: Vec<Cow<'a, [u32]>>, value: Vec<Cow<'a, [f64]>>) -> Self {
+        let n = index.len();
         let width = n.next_multiple_of(LANES);
         let mut bounds = vec![0u16; m * width];
-        let (mut index, mut value, mut norms) = (Vec::new(), Vec::new(), Vec::new());
-        for i in 0..n {
-            let (hypotheses, values) = preferences.row_support(i);
+        let mut norms = Vec::with_capacity(n);
+        for (i, (hypotheses, values)) in index.iter().zip(&value).enumerate() {
             let mut norm = 0.0;
-            for (&j, &v) in hypotheses.iter().zip(values) {
+            for (&j, &v) in hypotheses.iter().zip(values.iter()) {
                 bounds[j as usize * width + i] = quantise(v);
                 norm += v * v;
             }
-            index.push(Cow::Borrowed(hypotheses));
-            value.push(Cow::Borrowed(values));
             norms.push(norm);
         }
         Self {
@@ -213,41 +240,62 @@ impl<'a> ContinuousState<'a> {
 
     /// Eq. 40 on the exact lists: `kept ← min(kept, removed)`, which is
     /// non-zero exactly on the common hypotheses; the bound column of `kept`
-    /// is rewritten to match. Returns the new squared norm.
+    /// is rewritten to match and the lists of `removed` are dropped. The
+    /// merged lists overwrite `kept`'s (a borrowed row is copied first) and
+    /// are shrunk to their length. Returns the new squared norm.
     fn merge_exact(&mut self, kept: usize, removed: usize) -> f64 {
-        let (old_index, old_value) = (
-            std::mem::take(&mut self.index[kept]),
-            std::mem::take(&mut self.value[kept]),
-        );
         let (b_index, b_value) = (
             std::mem::take(&mut self.index[removed]),
             std::mem::take(&mut self.value[removed]),
         );
-        let slot = self.slot_of_cluster[kept] as usize;
-        // The intersection has at most the shorter length: allocated once,
-        // never grown.
-        let capacity = old_index.len().min(b_index.len());
-        let (mut index, mut value) = (Vec::with_capacity(capacity), Vec::with_capacity(capacity));
-        let (mut y, mut norm) = (0, 0.0);
-        for (&j, &a) in old_index.iter().zip(old_value.iter()) {
-            while y < b_index.len() && b_index[y] < j {
-                y += 1;
-            }
-            let merged = if y < b_index.len() && b_index[y] == j {
-                let v = a.min(b_value[y]);
-                index.push(j);
-                value.push(v);
-                norm += v * v;
-                v
-            } else {
-                0.0
-            };
-            self.bounds[j as usize * self.width + slot] = quantise(merged);
-        }
+        let mut index = std::mem::take(&mut self.index[kept]).into_owned();
+        let mut value = std::mem::take(&mut self.value[kept]).into_owned();
+        let (slot, width) = (self.slot_of_cluster[kept] as usize, self.width);
+        let bounds = &mut self.bounds;
+        let norm = intersect_in_place(&mut index, &mut value, &b_index, &b_value, |j, merged| {
+            bounds[j as usize * width + slot] = quantise(merged);
+        });
+        index.shrink_to_fit();
+        value.shrink_to_fit();
         self.index[kept] = Cow::Owned(index);
         self.value[kept] = Cow::Owned(value);
         norm
     }
+}
+
+/// `a ← min(a, b)` (Eq. 40) on sorted sparse lists, in place: `a` keeps
+/// its hypotheses that `b` has too, each with the smaller value. Calls
+/// `visit(j, merged)` for every hypothesis j of the old `a` (`merged` 0 for
+/// the dropped ones) and returns the squared norm of the new `a`, summed in
+/// hypothesis order.
+fn intersect_in_place(
+    a_index: &mut Vec<u32>,
+    a_value: &mut Vec<f64>,
+    b_index: &[u32],
+    b_value: &[f64],
+    mut visit: impl FnMut(u32, f64),
+) -> f64 {
+    let (mut y, mut written, mut norm) = (0, 0, 0.0);
+    for read in 0..a_index.len() {
+        let (j, a) = (a_index[read], a_value[read]);
+        while y < b_index.len() && b_index[y] < j {
+            y += 1;
+        }
+        let merged = if y < b_index.len() && b_index[y] == j {
+            let v = a.min(b_value[y]);
+            a_index[written] = j;
+            a_value[written] = v;
+            written += 1;
+            norm += v * v;
+            v
+        } else {
+            0.0
+        };
+        visit(j, merged);
+    }
+    a_index.truncate(written);
+    a_value.truncate(written);
+    norm
 }
 
 impl AgglomerationState for ContinuousState<'_> {
@@ -443,6 +491,41 @@ mod tests {
                 reference::t_linkage(&p, 0),
                 "case {case}"
             );
+        }
+    }
+
+    /// Consuming the matrix (rows merged in place, absorbed rows freed)
+    /// gives the reference result, with bounded runs too, and leaves every
+    /// surviving row at exactly its length.
+    #[test]
+    fn owned_rows_give_the_reference_result() {
+        let mut rng = Xorshift(44);
+        for case in 0..30 {
+            let (n, m) = (
+                2 + (rng.next() % 70) as usize,
+                1 + (rng.next() % 150) as usize,
+            );
+            let p = random_matrix(&mut rng, n, m, [0.05, 0.4, 0.9][case % 3]);
+            let expected = reference::t_linkage(&p, 0);
+            for capacity in [RUN_CAPACITY, 2] {
+                let merges = agglomerate(ContinuousState::owning(p.clone()), capacity);
+                assert_eq!(
+                    labels_from_merges(n, merges, SizeRule::MinSize, 0),
+                    expected,
+                    "case {case}, capacity {capacity}"
+                );
+            }
+            let mut state = ContinuousState::owning(p.clone());
+            let mut active = vec![true; n];
+            let mut fresh = Vec::new();
+            for removed in (1..n).rev() {
+                active[removed] = false;
+                fresh.clear();
+                state.merge(0, removed, &active, &mut fresh);
+                assert_eq!(state.index[0].len(), state.value[0].len());
+                assert!(matches!(state.index[0], Cow::Owned(ref v) if v.capacity() == v.len()));
+                assert!(state.index[removed].is_empty());
+            }
         }
     }
 
