@@ -14,12 +14,12 @@ use std::fmt::Write;
 use std::path::Path;
 
 fn kocur() -> PipelineConfig {
-    PipelineConfig {
+    PipelineConfig::from_params(segmentation::Params {
         method: Method::Semical,
         num_samples: 300,
         focal_failure: OnFailure::Prior,
-        ..PipelineConfig::default()
-    }
+        ..Default::default()
+    })
 }
 
 /// What the file says of a hypothesis's F.
@@ -61,11 +61,10 @@ fn focal_file(
 }
 
 fn external(path: &Path) -> PipelineConfig {
-    PipelineConfig {
-        focal_solver: FocalSolver::External,
-        focal_file: path.to_str().unwrap().replace("12345", "{seed}"),
-        ..kocur()
-    }
+    let mut config = kocur();
+    config.params.focal_solver = FocalSolver::External;
+    config.focal_file = path.to_str().unwrap().replace("12345", "{seed}");
+    config
 }
 
 #[test]
@@ -107,10 +106,8 @@ fn answers_are_truncated_and_non_finite_ones_leave_no_focals() {
         _ => (f64::INFINITY, 1.0),
     });
     std::fs::write(&path, text).unwrap();
-    let config = PipelineConfig {
-        truncate_focals: true,
-        ..external(&path)
-    };
+    let mut config = external(&path);
+    config.params.truncate_focals = true;
     let generated = generate_hypotheses(&scene, &config).unwrap();
     let read = estimate_hypothesis_focals(&scene, &config, &generated).unwrap();
     for (j, model) in generated.models.iter().enumerate() {

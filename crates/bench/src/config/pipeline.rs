@@ -1,14 +1,14 @@
 //! The `[pipeline]` table: the parameters of Algorithm 1 ([`PipelineConfig`],
-//! mirroring [`segmentation::Params`]) and the files that give only them.
+//! [`segmentation::Params`] with the harness's `profile` and `focal_file`)
+//! and the files that give only them.
 
 use super::{parse_toml, ConfigError};
-use segmentation::{
-    DuplicateFilter, EightPoint, FinalAssignment, FocalSolver, ImplausibleFocal, IrlsFit, Linkage,
-    LocalTest, Method, MinimalSolutions, MinimalSolver, OnFailure, ParamError, Params, Profile,
-    Sampling, SizeRule, WeightSets,
-};
+use segmentation::{FocalSolver, ParamError, Params, Profile};
+use serde::de::value::MapAccessDeserializer;
+use serde::de::{DeserializeSeed, Deserializer, Error as _, IntoDeserializer, MapAccess, Visitor};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
+use std::sync::LazyLock;
 
 /// The `[pipeline]` table of an experiment file: every parameter of
 /// [`segmentation::Params`] under the same name, with the same default (see
@@ -17,45 +17,29 @@ use std::path::Path;
 /// parameters ([`segmentation::Profile`]) that gives every key the table
 /// does not ([`PipelineConfig::on_profile`]).
 ///
+/// The table reads as one flat map: `profile` and `focal_file` are taken
+/// out, and every other key is read by `Params`'s own serde (its defaults,
+/// its unknown-key errors), so the two cannot drift. Written back, it is
+/// `profile` (unless default), `focal_file` (unless empty), then `Params`.
+///
 /// ```
 /// let p: bench::config::PipelineConfig = toml::from_str("num_samples = 500").unwrap();
-/// assert_eq!(p.num_samples, 500);
-/// assert_eq!(p.thr_px, 2.5); // Table 1
+/// assert_eq!(p.params.num_samples, 500);
+/// assert_eq!(p.params.thr_px, 2.5); // Table 1
 /// assert!(toml::from_str::<bench::config::PipelineConfig>("num_sample = 5").is_err());
 /// ```
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-#[allow(missing_docs)] // each field is documented on segmentation::Params
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct PipelineConfig {
     /// The named parameter set whose values the keys this table does not
     /// give take: `default` ([`Params::default`]), `thesis`
     /// ([`Params::thesis`]), `fast` ([`Params::fast`]) or `large`
     /// ([`Params::large`]). Applied when a
     /// file is read ([`PipelineConfig::load`],
-    /// [`super::ExperimentConfig::parse`]): the other fields hold the
-    /// resolved values. Not one of [`PIPELINE_KEYS`] (it cannot be swept).
+    /// [`super::ExperimentConfig::parse`]): `params` holds the resolved
+    /// values. Not one of [`PIPELINE_KEYS`] (it cannot be swept).
     /// Default `default` (not serialised then).
     #[serde(skip_serializing_if = "is_default_profile")]
     pub profile: Profile,
-    pub method: Method,
-    pub num_samples: usize,
-    pub adaptive_batch: usize,
-    pub adaptive_tolerance: f64,
-    pub mss_size: usize,
-    pub thr_px: f64,
-    pub tau_diff: f64,
-    pub tau_range: f64,
-    pub irls_iters: usize,
-    pub irls_fit: IrlsFit,
-    pub irls_unit_weight_fallback: bool,
-    pub irls_sigma_offset_px: f64,
-    pub irls_polish: bool,
-    pub refine: bool,
-    pub eight_point: EightPoint,
-    pub minimal_solver: MinimalSolver,
-    pub minimal_solutions: MinimalSolutions,
-    pub sampling: Sampling,
-    pub focal_solver: FocalSolver,
     /// The CSV of `focal_solver = "external"` (see [`crate::focal_file`]),
     /// relative to the working directory; `{seed}` is replaced by the seed.
     /// Answers are used as given (truncated when `truncate_focals`); a
@@ -63,30 +47,122 @@ pub struct PipelineConfig {
     /// (not serialised when empty).
     #[serde(skip_serializing_if = "String::is_empty")]
     pub focal_file: String,
-    pub weight_sets: WeightSets,
-    pub max_iters: usize,
-    pub focal_failure: OnFailure,
-    pub truncate_focals: bool,
-    pub local_test: LocalTest,
-    pub implausible_focal: ImplausibleFocal,
-    pub linkage: Linkage,
-    pub min_cluster_size: usize,
-    pub size_rule: SizeRule,
-    pub final_assignment: FinalAssignment,
-    pub duplicate_filter: DuplicateFilter,
-    pub max_memory_mb: u64,
-    /// The run's seed; scene `s` is segmented with the seed
-    /// [`crate::pipeline::scene_seed`]`(seed, s)`, as in every committed result.
-    pub seed: u64,
+    /// The method's parameters; `seed` is the run's seed: scene `s` is
+    /// segmented with the seed [`crate::pipeline::scene_seed`]`(seed, s)`,
+    /// as in every committed result.
+    #[serde(flatten)]
+    pub params: Params,
 }
 
-impl Default for PipelineConfig {
-    fn default() -> Self {
-        Self::from_params(Params::default())
+impl<'de> Deserialize<'de> for PipelineConfig {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        deserializer.deserialize_map(PipelineVisitor)
     }
 }
 
-/// The keys of [`PipelineConfig`] in declaration order: the order of the
+/// Reads a `[pipeline]` map: [`HarnessKeys`] takes `profile` and
+/// `focal_file` out of it, `Params` reads the rest.
+struct PipelineVisitor;
+
+impl<'de> Visitor<'de> for PipelineVisitor {
+    type Value = PipelineConfig;
+
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str("a [pipeline] table")
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<PipelineConfig, A::Error> {
+        let mut keys = HarnessKeys {
+            map,
+            profile: Profile::Default,
+            focal_file: String::new(),
+        };
+        let params = Params::deserialize(MapAccessDeserializer::new(&mut keys))?;
+        Ok(PipelineConfig {
+            profile: keys.profile,
+            focal_file: keys.focal_file,
+            params,
+        })
+    }
+}
+
+/// The map of a `[pipeline]` table as `Params` sees it: the harness's own
+/// keys are read into their fields as they pass and never reach `Params`.
+/// Every call goes through the underlying map, so a parse error keeps its
+/// key path and line.
+struct HarnessKeys<A> {
+    map: A,
+    profile: Profile,
+    focal_file: String,
+}
+
+/// A key of a `[pipeline]` table: a harness key (the seed handed back,
+/// unused) or a key of `Params`, read by `Params`'s seed.
+enum PipelineKey<S, K> {
+    Profile(S),
+    FocalFile(S),
+    Param(K),
+}
+
+/// Every key a `[pipeline]` table may hold, for the unknown-key error.
+static TABLE_KEYS: LazyLock<Vec<&'static str>> =
+    LazyLock::new(|| std::iter::once("profile").chain(PIPELINE_KEYS).collect());
+
+/// Reads a key as a string, then either recognises a harness key, refuses
+/// an unknown one (naming every key of the table), or hands it to
+/// `Params`'s key seed.
+struct PipelineKeySeed<S>(S);
+
+impl<'de, S: DeserializeSeed<'de>> DeserializeSeed<'de> for PipelineKeySeed<S> {
+    type Value = PipelineKey<S, S::Value>;
+
+    fn deserialize<D: Deserializer<'de>>(self, deserializer: D) -> Result<Self::Value, D::Error> {
+        let key = String::deserialize(deserializer)?;
+        match key.as_str() {
+            "profile" => Ok(PipelineKey::Profile(self.0)),
+            "focal_file" => Ok(PipelineKey::FocalFile(self.0)),
+            _ if !PIPELINE_KEYS.contains(&key.as_str()) => {
+                Err(D::Error::unknown_field(&key, &TABLE_KEYS))
+            }
+            _ => self
+                .0
+                .deserialize(key.into_deserializer())
+                .map(PipelineKey::Param),
+        }
+    }
+}
+
+impl<'de, A: MapAccess<'de>> MapAccess<'de> for &mut HarnessKeys<A> {
+    type Error = A::Error;
+
+    fn next_key_seed<K: DeserializeSeed<'de>>(
+        &mut self,
+        seed: K,
+    ) -> Result<Option<K::Value>, A::Error> {
+        let mut seed = seed;
+        loop {
+            match self.map.next_key_seed(PipelineKeySeed(seed))? {
+                None => return Ok(None),
+                Some(PipelineKey::Param(key)) => return Ok(Some(key)),
+                Some(PipelineKey::Profile(unused)) => {
+                    self.profile = self.map.next_value()?;
+                    seed = unused;
+                }
+                Some(PipelineKey::FocalFile(unused)) => {
+                    self.focal_file = self.map.next_value()?;
+                    seed = unused;
+                }
+            }
+        }
+    }
+
+    fn next_value_seed<V: DeserializeSeed<'de>>(&mut self, seed: V) -> Result<V::Value, A::Error> {
+        self.map.next_value_seed(seed)
+    }
+}
+
+/// The keys of [`PipelineConfig`] but `profile`: those of [`Params`] in
+/// declaration order, `focal_file` after `focal_solver` — the order of the
 /// swept-parameter columns in every output file.
 pub const PIPELINE_KEYS: [&str; 33] = [
     "method",
@@ -130,88 +206,23 @@ fn is_default_profile(profile: &Profile) -> bool {
 
 impl PipelineConfig {
     /// The table of `params`, without a focal file, on the `default` profile.
-    pub fn from_params(p: Params) -> Self {
+    pub fn from_params(params: Params) -> Self {
         Self {
-            profile: Profile::Default,
-            method: p.method,
-            num_samples: p.num_samples,
-            adaptive_batch: p.adaptive_batch,
-            adaptive_tolerance: p.adaptive_tolerance,
-            mss_size: p.mss_size,
-            thr_px: p.thr_px,
-            tau_diff: p.tau_diff,
-            tau_range: p.tau_range,
-            irls_iters: p.irls_iters,
-            irls_fit: p.irls_fit,
-            irls_unit_weight_fallback: p.irls_unit_weight_fallback,
-            irls_sigma_offset_px: p.irls_sigma_offset_px,
-            irls_polish: p.irls_polish,
-            refine: p.refine,
-            eight_point: p.eight_point,
-            minimal_solver: p.minimal_solver,
-            minimal_solutions: p.minimal_solutions,
-            sampling: p.sampling,
-            focal_solver: p.focal_solver,
-            focal_file: String::new(),
-            weight_sets: p.weight_sets,
-            max_iters: p.max_iters,
-            focal_failure: p.focal_failure,
-            truncate_focals: p.truncate_focals,
-            local_test: p.local_test,
-            implausible_focal: p.implausible_focal,
-            linkage: p.linkage,
-            min_cluster_size: p.min_cluster_size,
-            size_rule: p.size_rule,
-            final_assignment: p.final_assignment,
-            duplicate_filter: p.duplicate_filter,
-            max_memory_mb: p.max_memory_mb,
-            seed: p.seed,
+            params,
+            ..Self::default()
         }
     }
 
     /// The method's parameters, with the run's seed.
     pub fn params(&self) -> Params {
-        Params {
-            method: self.method,
-            num_samples: self.num_samples,
-            adaptive_batch: self.adaptive_batch,
-            adaptive_tolerance: self.adaptive_tolerance,
-            mss_size: self.mss_size,
-            thr_px: self.thr_px,
-            tau_diff: self.tau_diff,
-            tau_range: self.tau_range,
-            irls_iters: self.irls_iters,
-            irls_fit: self.irls_fit,
-            irls_unit_weight_fallback: self.irls_unit_weight_fallback,
-            irls_sigma_offset_px: self.irls_sigma_offset_px,
-            irls_polish: self.irls_polish,
-            refine: self.refine,
-            eight_point: self.eight_point,
-            minimal_solver: self.minimal_solver,
-            minimal_solutions: self.minimal_solutions,
-            sampling: self.sampling,
-            focal_solver: self.focal_solver,
-            weight_sets: self.weight_sets.clone(),
-            max_iters: self.max_iters,
-            focal_failure: self.focal_failure,
-            truncate_focals: self.truncate_focals,
-            local_test: self.local_test,
-            implausible_focal: self.implausible_focal,
-            linkage: self.linkage,
-            min_cluster_size: self.min_cluster_size,
-            size_rule: self.size_rule,
-            final_assignment: self.final_assignment,
-            duplicate_filter: self.duplicate_filter,
-            max_memory_mb: self.max_memory_mb,
-            seed: self.seed,
-        }
+        self.params.clone()
     }
 
     /// The method's parameters for the scene named `scene`: the seed is
     /// [`crate::pipeline::scene_seed`]`(seed, scene)`.
     pub fn scene_params(&self, scene: &str) -> Params {
         Params {
-            seed: crate::pipeline::scene_seed(self.seed, scene),
+            seed: crate::pipeline::scene_seed(self.params.seed, scene),
             ..self.params()
         }
     }
@@ -220,7 +231,7 @@ impl PipelineConfig {
     /// `focal_file` is given with `focal_solver = "external"`.
     pub fn validate(&self) -> Result<(), ParamError> {
         self.params().validate()?;
-        if self.focal_solver == FocalSolver::External && self.focal_file.is_empty() {
+        if self.params.focal_solver == FocalSolver::External && self.focal_file.is_empty() {
             return Err(ParamError {
                 key: "focal_file",
                 message: "must name the CSV of focal lengths when focal_solver = \"external\""

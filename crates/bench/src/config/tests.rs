@@ -23,13 +23,18 @@ fn pipeline_keys_follow_the_declaration_order() {
     expected.sort();
     assert_eq!(keys, expected);
     // serde serializes in declaration order; toml's Table sorts, so check
-    // the declaration order through the serialized text instead.
+    // the declaration order through the serialized text instead: the
+    // harness's focal_file first, then Params's keys in PIPELINE_KEYS order.
     let text = toml::to_string(&config).unwrap();
     let order: Vec<&str> = text
         .lines()
         .filter_map(|l| l.split_once(" = ").map(|(k, _)| k))
         .collect();
-    assert_eq!(order, PIPELINE_KEYS.to_vec());
+    let params_keys = PIPELINE_KEYS.iter().filter(|&&k| k != "focal_file");
+    let expected: Vec<&str> = std::iter::once("focal_file")
+        .chain(params_keys.copied())
+        .collect();
+    assert_eq!(order, expected);
 }
 
 #[test]
@@ -38,18 +43,21 @@ fn defaults_are_table_1() {
     let p = &c.pipeline;
     assert_eq!(
         (
-            p.num_samples,
-            p.mss_size,
-            p.thr_px,
-            p.tau_diff,
-            p.tau_range,
-            p.irls_iters
+            p.params.num_samples,
+            p.params.mss_size,
+            p.params.thr_px,
+            p.params.tau_diff,
+            p.params.tau_range,
+            p.params.irls_iters
         ),
         (3000, 8, 2.5, 0.05, 0.20, 5)
     );
     // The best measured configuration: five-point hypotheses, no filter.
-    assert_eq!(p.method, Method::Baseline);
-    assert_eq!(p.minimal_solver, segmentation::MinimalSolver::FivePoint);
+    assert_eq!(p.params.method, Method::Baseline);
+    assert_eq!(
+        p.params.minimal_solver,
+        segmentation::MinimalSolver::FivePoint
+    );
     assert_eq!(c.compare.against, default_against());
     assert!(c.plots.enabled && !c.plots.per_scene);
 }
@@ -78,9 +86,9 @@ fn bad_enum_value_names_the_key() {
 #[test]
 fn sampling_and_final_assignment_read_and_reject_bad_values() {
     let c = parse(BASE).unwrap();
-    assert_eq!(c.pipeline.sampling, segmentation::Sampling::Uniform);
+    assert_eq!(c.pipeline.params.sampling, segmentation::Sampling::Uniform);
     assert_eq!(
-        c.pipeline.final_assignment,
+        c.pipeline.params.final_assignment,
         segmentation::FinalAssignment::Merge
     );
     let c = parse(&format!(
@@ -117,13 +125,13 @@ fn out_of_range_value_names_the_key_and_line() {
 #[test]
 fn weight_sets_accept_presets_and_lists() {
     let c = parse(&format!("{BASE}[pipeline]\nweight_sets = \"hopef\"\n")).unwrap();
-    assert_eq!(c.pipeline.weight_sets.sets().len(), 6);
+    assert_eq!(c.pipeline.params.weight_sets.sets().len(), 6);
     let c = parse(&format!(
         "{BASE}[pipeline]\nweight_sets = [[1e-3, 1, 1e-3, 1]]\n"
     ))
     .unwrap();
     assert_eq!(
-        c.pipeline.weight_sets.sets(),
+        c.pipeline.params.weight_sets.sets(),
         vec![focal::FocalWeights::new(1e-3, 1.0, 1e-3, 1.0)]
     );
     let err = parse(&format!("{BASE}[pipeline]\nweight_sets = \"kitti\"\n")).unwrap_err();
@@ -171,10 +179,10 @@ fn pipeline_file_reads_the_pipeline_table_of_any_config() {
         format!("{BASE}[pipeline]\nthr_px = 4.5\n[sweep]\nseed = [1, 2]\n"),
     )
     .unwrap();
-    assert_eq!(PipelineConfig::load(&path).unwrap().thr_px, 4.5);
+    assert_eq!(PipelineConfig::load(&path).unwrap().params.thr_px, 4.5);
     std::fs::write(&path, "[pipeline]\nmethod = \"baseline\"\n").unwrap();
     assert_eq!(
-        PipelineConfig::load(&path).unwrap().method,
+        PipelineConfig::load(&path).unwrap().params.method,
         Method::Baseline
     );
     std::fs::write(&path, "[pipline]\nmethod = \"baseline\"\n").unwrap();
@@ -210,7 +218,7 @@ fn size_rule_reads_each_rule_and_rejects_a_bad_fraction() {
         ("{ relative-min = 0.01 }", SizeRule::RelativeMin(0.01)),
     ] {
         let c = parse(&format!("{BASE}[pipeline]\nsize_rule = {text}\n")).unwrap();
-        assert_eq!(c.pipeline.size_rule, rule, "{text}");
+        assert_eq!(c.pipeline.params.size_rule, rule, "{text}");
     }
     let err = parse(&format!(
         "{BASE}[pipeline]\nsize_rule = {{ relative-min = 2.0 }}\n"
@@ -255,8 +263,8 @@ fn profile_gives_the_keys_the_table_does_not() {
         "{BASE}[pipeline]\nprofile = \"thesis\"\nminimal_solver = \"five-point\"\n"
     ))
     .unwrap();
-    assert_eq!(c.pipeline.minimal_solver, MinimalSolver::FivePoint);
-    assert_eq!(c.pipeline.method, Method::Semical);
+    assert_eq!(c.pipeline.params.minimal_solver, MinimalSolver::FivePoint);
+    assert_eq!(c.pipeline.params.method, Method::Semical);
 }
 
 #[test]
