@@ -3,7 +3,7 @@
 //! and the files that give only them.
 
 use super::{parse_toml, ConfigError};
-use segmentation::{FocalSolver, ParamError, Params, Profile};
+use segmentation::{FocalSolver, ParamError, Params, Profile, PARAM_KEYS};
 use serde::de::value::MapAccessDeserializer;
 use serde::de::{DeserializeSeed, Deserializer, Error as _, IntoDeserializer, MapAccess, Visitor};
 use serde::{Deserialize, Serialize};
@@ -162,43 +162,44 @@ impl<'de, A: MapAccess<'de>> MapAccess<'de> for &mut HarnessKeys<A> {
 }
 
 /// The keys of [`PipelineConfig`] but `profile`: those of [`Params`] in
-/// declaration order, `focal_file` after `focal_solver` — the order of the
-/// swept-parameter columns in every output file.
-pub const PIPELINE_KEYS: [&str; 33] = [
-    "method",
-    "num_samples",
-    "adaptive_batch",
-    "adaptive_tolerance",
-    "mss_size",
-    "thr_px",
-    "tau_diff",
-    "tau_range",
-    "irls_iters",
-    "irls_fit",
-    "irls_unit_weight_fallback",
-    "irls_sigma_offset_px",
-    "irls_polish",
-    "refine",
-    "eight_point",
-    "minimal_solver",
-    "minimal_solutions",
-    "sampling",
-    "focal_solver",
-    "focal_file",
-    "weight_sets",
-    "max_iters",
-    "focal_failure",
-    "truncate_focals",
-    "local_test",
-    "implausible_focal",
-    "linkage",
-    "min_cluster_size",
-    "size_rule",
-    "final_assignment",
-    "duplicate_filter",
-    "max_memory_mb",
-    "seed",
-];
+/// declaration order ([`segmentation::PARAM_KEYS`]), `focal_file` after
+/// `focal_solver` — the order of the swept-parameter columns in every
+/// output file.
+pub const PIPELINE_KEYS: [&str; PARAM_KEYS.len() + 1] = with_focal_file(PARAM_KEYS);
+
+/// `keys` with `"focal_file"` inserted after `"focal_solver"` (at the end
+/// when there is none).
+const fn with_focal_file<const N: usize, const M: usize>(
+    keys: [&'static str; N],
+) -> [&'static str; M] {
+    let mut out = ["focal_file"; M];
+    let (mut read, mut write) = (0, 0);
+    while read < N {
+        out[write] = keys[read];
+        write += 1;
+        if same_str(keys[read], "focal_solver") {
+            write += 1; // out[write - 1] keeps "focal_file"
+        }
+        read += 1;
+    }
+    out
+}
+
+/// `a == b` at compile time.
+const fn same_str(a: &str, b: &str) -> bool {
+    let (a, b) = (a.as_bytes(), b.as_bytes());
+    if a.len() != b.len() {
+        return false;
+    }
+    let mut i = 0;
+    while i < a.len() {
+        if a[i] != b[i] {
+            return false;
+        }
+        i += 1;
+    }
+    true
+}
 
 fn is_default_profile(profile: &Profile) -> bool {
     *profile == Profile::Default
