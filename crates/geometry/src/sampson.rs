@@ -165,14 +165,27 @@ pub fn symmetric_epipolar_distance(f: &Matrix3<f64>, p1: [f64; 2], p2: [f64; 2])
 /// assert!((out[1] - 2.0).abs() < 1e-12);
 /// ```
 pub fn sampson_distances_squared(f: &Matrix3<f64>, points: &Correspondences, out: &mut [f64]) {
+    // A compare-and-blend: vectorises.
+    batch_map(f, points, out, |e, g| ratio(e, e * e, g));
+}
+
+/// `out[i] = value(e_i, a_i² + b_i² + c_i² + d_i²)` for the first
+/// `min(out.len(), points.len())` correspondences, `F` rescaled first: the
+/// loop of the batch forms, branch-free when `value` is.
+#[inline(always)]
+fn batch_map(
+    f: &Matrix3<f64>,
+    points: &Correspondences,
+    out: &mut [f64],
+    value: impl Fn(f64, f64) -> f64,
+) {
     let f = rescale_power_of_two(f);
     let (x1, y1, x2, y2) = points.columns();
     let n = out.len().min(x1.len());
     let (x1, y1, x2, y2, out) = (&x1[..n], &y1[..n], &x2[..n], &y2[..n], &mut out[..n]);
     for i in 0..n {
         let (e, g) = batch_terms(&f, x1[i], y1[i], x2[i], y2[i]);
-        // A compare-and-blend: vectorises.
-        out[i] = ratio(e, e * e, g);
+        out[i] = value(e, g);
     }
 }
 
@@ -289,14 +302,7 @@ pub fn sampson_consensus(
 /// assert!((r[0] + r[1]).abs() < 1e-12 && (r[0].abs() - 2f64.sqrt()).abs() < 1e-12);
 /// ```
 pub fn sampson_residuals_signed(f: &Matrix3<f64>, points: &Correspondences, out: &mut [f64]) {
-    let f = rescale_power_of_two(f);
-    let (x1, y1, x2, y2) = points.columns();
-    let n = out.len().min(x1.len());
-    let (x1, y1, x2, y2, out) = (&x1[..n], &y1[..n], &x2[..n], &y2[..n], &mut out[..n]);
-    for i in 0..n {
-        let (e, g) = batch_terms(&f, x1[i], y1[i], x2[i], y2[i]);
-        out[i] = ratio(e, e, g.sqrt());
-    }
+    batch_map(f, points, out, |e, g| ratio(e, e, g.sqrt()));
 }
 
 /// Signed Sampson residuals of the correspondences listed in `indices`
