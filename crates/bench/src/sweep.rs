@@ -406,18 +406,23 @@ fn cartesian_product<'a>(swept: &[Swept<'a>]) -> Vec<Vec<&'a toml::Value>> {
     points
 }
 
+/// The plan of a synthetic experiment whose `[sweep]` table holds the
+/// lines `sweep` (for the tests of the modules that read plans).
+#[cfg(test)]
+pub(crate) fn plan_of_sweep(sweep: &str) -> SweepPlan {
+    let text = format!("name = \"x\"\n[dataset]\nkind = \"synthetic\"\n[sweep]\n{sweep}");
+    let config = ExperimentConfig::parse(&text, Path::new("x.toml")).unwrap();
+    SweepPlan::expand(&config).unwrap()
+}
+
 /// The examples once in the documentation of this module's items.
 #[cfg(test)]
 mod examples {
     #[test]
     fn expand_example() {
-        let config = crate::config::ExperimentConfig::parse(
-            "name = \"x\"\n[dataset]\nkind = \"synthetic\"\n\
-             [sweep]\nnum_samples = [500, 1000]\nmethod = [\"baseline\", \"semical\"]\n",
-            std::path::Path::new("x.toml"),
-        )
-        .unwrap();
-        let plan = crate::sweep::SweepPlan::expand(&config).unwrap();
+        let plan = super::plan_of_sweep(
+            "num_samples = [500, 1000]\nmethod = [\"baseline\", \"semical\"]\n",
+        );
         assert_eq!(plan.columns, ["method", "num_samples"]);
         let rows: Vec<String> = plan
             .combinations

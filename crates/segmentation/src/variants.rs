@@ -2,59 +2,64 @@
 //! which minimal solver and which of its solutions, which focal solver,
 //! which local test, what an implausible focal consensus does.
 
-/// Which hypotheses reach the clustering (Algorithm 1 steps 4–6).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(rename_all = "kebab-case")
-)]
-pub enum Method {
-    /// Semi-calibrated T-Linkage: focal estimation, local test (Eq. 36) and
-    /// scene-level focal consensus (Eq. 37) filter the hypotheses.
-    Semical,
-    /// The uncalibrated baseline: every refined hypothesis is kept.
-    Baseline,
+/// Declares one switch: a fieldless enum deriving `Debug, Clone, Copy,
+/// PartialEq, Eq, Hash`, read and written in kebab-case with the `serde`
+/// feature (`Method::Semical` is `"semical"`, `LocalTest::ReferenceCode`
+/// `"reference-code"`).
+macro_rules! param_enum {
+    ($(#[$meta:meta])* pub enum $name:ident { $($body:tt)* }) => {
+        $(#[$meta])*
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        #[cfg_attr(
+            feature = "serde",
+            derive(serde::Serialize, serde::Deserialize),
+            serde(rename_all = "kebab-case")
+        )]
+        pub enum $name { $($body)* }
+    };
 }
 
-/// The 8-point variant of Algorithm 1 step 2.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(rename_all = "kebab-case")
-)]
-pub enum EightPoint {
-    /// Hartley-normalised 8-point (the text).
-    Normalized,
-    /// Un-normalised system on centred pixel coordinates (the reference code).
-    Plain,
+param_enum! {
+    /// Which hypotheses reach the clustering (Algorithm 1 steps 4–6).
+    pub enum Method {
+        /// Semi-calibrated T-Linkage: focal estimation, local test (Eq. 36) and
+        /// scene-level focal consensus (Eq. 37) filter the hypotheses.
+        Semical,
+        /// The uncalibrated baseline: every refined hypothesis is kept.
+        Baseline,
+    }
 }
 
-/// The minimal solver of Algorithm 1 step 2: how each sample becomes a
-/// hypothesis F.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(rename_all = "kebab-case")
-)]
-pub enum MinimalSolver {
-    /// The 8-point algorithm on `mss_size` matches, in the variant of
-    /// [`crate::Params::eight_point`] (the thesis).
-    EightPoint,
-    /// The 7-point algorithm (Hartley & Zisserman §11.1.2): up to 3 F per
-    /// sample of 7, uncalibrated.
-    SevenPoint,
-    /// The 5-point essential-matrix solver (Nistér 2004; Stewénius, Engels,
-    /// Nistér 2006) in the coordinates `K(f)⁻¹ x` with `f` the focal prior:
-    /// up to 10 E per sample of 5, each turned into `F = K⁻ᵀ E K⁻¹`. The one
-    /// camera and its focal enter the hypotheses themselves.
-    FivePoint,
-    /// The 6-point solver for relative pose with one unknown focal length
-    /// shared by both views (Stewénius, Nistér, Kahl, Schaffalitzky 2008):
-    /// up to 15 (f, F) per sample of 6.
-    SixPointFocal,
+param_enum! {
+    /// The 8-point variant of Algorithm 1 step 2.
+    pub enum EightPoint {
+        /// Hartley-normalised 8-point (the text).
+        Normalized,
+        /// Un-normalised system on centred pixel coordinates (the reference code).
+        Plain,
+    }
+}
+
+param_enum! {
+    /// The minimal solver of Algorithm 1 step 2: how each sample becomes a
+    /// hypothesis F.
+    pub enum MinimalSolver {
+        /// The 8-point algorithm on `mss_size` matches, in the variant of
+        /// [`crate::Params::eight_point`] (the thesis).
+        EightPoint,
+        /// The 7-point algorithm (Hartley & Zisserman §11.1.2): up to 3 F per
+        /// sample of 7, uncalibrated.
+        SevenPoint,
+        /// The 5-point essential-matrix solver (Nistér 2004; Stewénius, Engels,
+        /// Nistér 2006) in the coordinates `K(f)⁻¹ x` with `f` the focal prior:
+        /// up to 10 E per sample of 5, each turned into `F = K⁻ᵀ E K⁻¹`. The one
+        /// camera and its focal enter the hypotheses themselves.
+        FivePoint,
+        /// The 6-point solver for relative pose with one unknown focal length
+        /// shared by both views (Stewénius, Nistér, Kahl, Schaffalitzky 2008):
+        /// up to 15 (f, F) per sample of 6.
+        SixPointFocal,
+    }
 }
 
 impl MinimalSolver {
@@ -70,127 +75,99 @@ impl MinimalSolver {
     }
 }
 
-/// Which of a sample's solutions become hypotheses (minimal solvers other
-/// than the 8-point return several).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(rename_all = "kebab-case")
-)]
-pub enum MinimalSolutions {
-    /// The solution with the most matches within `thr_px` (Sampson), first
-    /// on ties: one hypothesis per sample, as RANSAC scores a sample.
-    Best,
-    /// Every solution: a sample gives as many hypotheses as real solutions.
-    All,
+param_enum! {
+    /// Which of a sample's solutions become hypotheses (minimal solvers other
+    /// than the 8-point return several).
+    pub enum MinimalSolutions {
+        /// The solution with the most matches within `thr_px` (Sampson), first
+        /// on ties: one hypothesis per sample, as RANSAC scores a sample.
+        Best,
+        /// Every solution: a sample gives as many hypotheses as real solutions.
+        All,
+    }
 }
 
-/// The focal-length solver of Algorithm 1 step 4.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(rename_all = "kebab-case")
-)]
-pub enum FocalSolver {
-    /// The robust iterative solver of Kocur, Kyselica and Kukelova (CVPR 2024),
-    /// multi-started over [`crate::Params::weight_sets`].
-    Kocur,
-    /// Bougnoux's closed form (Bougnoux 1998).
-    Bougnoux,
-    /// Answers computed outside this crate and handed in as data
-    /// ([`crate::HypothesisFocals::from_answers`], then
-    /// [`crate::segment_with`]); [`crate::segment`] refuses it.
-    External,
+param_enum! {
+    /// The focal-length solver of Algorithm 1 step 4.
+    pub enum FocalSolver {
+        /// The robust iterative solver of Kocur, Kyselica and Kukelova (CVPR 2024),
+        /// multi-started over [`crate::Params::weight_sets`].
+        Kocur,
+        /// Bougnoux's closed form (Bougnoux 1998).
+        Bougnoux,
+        /// Answers computed outside this crate and handed in as data
+        /// ([`crate::HypothesisFocals::from_answers`], then
+        /// [`crate::segment_with`]); [`crate::segment`] refuses it.
+        External,
+    }
 }
 
-/// The local test of Algorithm 1 step 5 (Eq. 36).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(rename_all = "kebab-case")
-)]
-pub enum LocalTest {
-    /// The thesis's Algorithm 1: a hypothesis failing Eq. 36 is discarded.
-    Algorithm1,
-    /// The reference code: only `f_avg <= 0` discards; the `|f1 - f2|` test
-    /// only decides which focals feed the KDE, and the band decides for all.
-    ReferenceCode,
+param_enum! {
+    /// The local test of Algorithm 1 step 5 (Eq. 36).
+    pub enum LocalTest {
+        /// The thesis's Algorithm 1: a hypothesis failing Eq. 36 is discarded.
+        Algorithm1,
+        /// The reference code: only `f_avg <= 0` discards; the `|f1 - f2|` test
+        /// only decides which focals feed the KDE, and the band decides for all.
+        ReferenceCode,
+    }
 }
 
-/// What the focal filter (steps 5–6) does when the scene's focal consensus
-/// is implausible: f_peak outside [`crate::PLAUSIBLE_FOCAL_RANGE`] times the
-/// focal prior (results/README.md: a consensus of degenerate tiny focals
-/// wins the KDE on scenes whose focal F cannot measure).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(rename_all = "kebab-case")
-)]
-pub enum ImplausibleFocal {
-    /// Filter by the band around f_peak all the same (the thesis).
-    Filter,
-    /// Abstain: keep every refined hypothesis, so the labels are the
-    /// baseline's bit for bit.
-    Abstain,
+param_enum! {
+    /// What the focal filter (steps 5–6) does when the scene's focal consensus
+    /// is implausible: f_peak outside [`crate::PLAUSIBLE_FOCAL_RANGE`] times the
+    /// focal prior (results/README.md: a consensus of degenerate tiny focals
+    /// wins the KDE on scenes whose focal F cannot measure).
+    pub enum ImplausibleFocal {
+        /// Filter by the band around f_peak all the same (the thesis).
+        Filter,
+        /// Abstain: keep every refined hypothesis, so the labels are the
+        /// baseline's bit for bit.
+        Abstain,
+    }
 }
 
-/// How step 1 draws the matches of a minimal sample.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(rename_all = "kebab-case")
-)]
-pub enum Sampling {
-    /// Every match equally likely, distinct (the thesis).
-    Uniform,
-    /// NAPSAC (Nasuto & Craddock 2002; Torr et al. 2002), the neighbour
-    /// sampling of J-Linkage and T-Linkage (Toldo & Fusiello 2008; Magri &
-    /// Fusiello 2014) and of Progressive-X (P-NAPSAC, Barath & Matas 2019):
-    /// the first match uniformly, the others uniformly among its
-    /// [`crate::neighbourhood_size`] nearest matches in image 1
-    /// ([`crate::MinimalSampler`]).
-    Localized,
+param_enum! {
+    /// How step 1 draws the matches of a minimal sample.
+    pub enum Sampling {
+        /// Every match equally likely, distinct (the thesis).
+        Uniform,
+        /// NAPSAC (Nasuto & Craddock 2002; Torr et al. 2002), the neighbour
+        /// sampling of J-Linkage and T-Linkage (Toldo & Fusiello 2008; Magri &
+        /// Fusiello 2014) and of Progressive-X (P-NAPSAC, Barath & Matas 2019):
+        /// the first match uniformly, the others uniformly among its
+        /// [`crate::neighbourhood_size`] nearest matches in image 1
+        /// ([`crate::MinimalSampler`]).
+        Localized,
+    }
 }
 
-/// What follows the clustering and its size filter (step 9).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(rename_all = "kebab-case")
-)]
-pub enum FinalAssignment {
-    /// Nothing: the labels are the clustering's (the thesis).
-    None,
-    /// Refit each cluster's F by IRLS-Tukey on its points, then give every
-    /// match the cluster of smallest Sampson distance within `thr_px`, as
-    /// Progressive-X (Barath & Matas, ICCV 2019) and consensus-space
-    /// clustering (Barath et al., CVPR 2023) end ([`crate::reassign`]).
-    Refit,
-    /// Merge a cluster into a larger one whose model (its best-supported
-    /// hypothesis) explains at least [`crate::MERGE_SHARE`] of its matches
-    /// ([`crate::merge_explained`]); no match changes cluster otherwise.
-    Merge,
+param_enum! {
+    /// What follows the clustering and its size filter (step 9).
+    pub enum FinalAssignment {
+        /// Nothing: the labels are the clustering's (the thesis).
+        None,
+        /// Refit each cluster's F by IRLS-Tukey on its points, then give every
+        /// match the cluster of smallest Sampson distance within `thr_px`, as
+        /// Progressive-X (Barath & Matas, ICCV 2019) and consensus-space
+        /// clustering (Barath et al., CVPR 2023) end ([`crate::reassign`]).
+        Refit,
+        /// Merge a cluster into a larger one whose model (its best-supported
+        /// hypothesis) explains at least [`crate::MERGE_SHARE`] of its matches
+        /// ([`crate::merge_explained`]); no match changes cluster otherwise.
+        Merge,
+    }
 }
 
-/// Which kept hypotheses enter the preferences (step 7).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(rename_all = "kebab-case")
-)]
-pub enum DuplicateFilter {
-    /// Every kept hypothesis (the thesis).
-    None,
-    /// A hypothesis whose inlier set (squared Sampson distance `≤ thr_px²`)
-    /// equals that of an earlier kept hypothesis is dropped
-    /// ([`crate::HypothesisStatus::Duplicate`]): each consensus set enters
-    /// the preference matrix once, and T-Linkage has fewer columns.
-    SameInliers,
+param_enum! {
+    /// Which kept hypotheses enter the preferences (step 7).
+    pub enum DuplicateFilter {
+        /// Every kept hypothesis (the thesis).
+        None,
+        /// A hypothesis whose inlier set (squared Sampson distance `≤ thr_px²`)
+        /// equals that of an earlier kept hypothesis is dropped
+        /// ([`crate::HypothesisStatus::Duplicate`]): each consensus set enters
+        /// the preference matrix once, and T-Linkage has fewer columns.
+        SameInliers,
+    }
 }

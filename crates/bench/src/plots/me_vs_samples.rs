@@ -192,13 +192,9 @@ pub fn me_vs_samples_series(plan: &SweepPlan, values: &RunValues) -> Option<Vec<
 mod examples {
     #[test]
     fn me_vs_samples_series_example() {
-        let config = crate::config::ExperimentConfig::parse(
-            "name = \"x\"\n[dataset]\nkind = \"synthetic\"\n\
-             [sweep]\nmethod = [\"baseline\", \"semical\"]\nnum_samples = [100, 200]\n",
-            std::path::Path::new("x.toml"),
-        )
-        .unwrap();
-        let plan = crate::sweep::SweepPlan::expand(&config).unwrap();
+        let plan = crate::sweep::plan_of_sweep(
+            "method = [\"baseline\", \"semical\"]\nnum_samples = [100, 200]\n",
+        );
         let table = crate::output::CsvTable::parse(
             &format!(
                 "{}\n",
