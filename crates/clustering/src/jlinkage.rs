@@ -110,14 +110,8 @@ impl AgglomerationState for BinaryState {
         self.distance(i, k)
     }
 
-    fn merge(
-        &mut self,
-        kept: usize,
-        removed: usize,
-        active: &[bool],
-        out: &mut Vec<(u32, Candidate)>,
-    ) {
-        let w = self.words;
+    fn merge(&mut self, merge: &Merge, active: &[bool], out: &mut Vec<(u32, Candidate)>) {
+        let (kept, removed, w) = (merge.kept, merge.removed, self.words);
         let (head, tail) = self.bits.split_at_mut(removed * w);
         for (a, b) in head[kept * w..(kept + 1) * w].iter_mut().zip(&tail[..w]) {
             *a &= b;

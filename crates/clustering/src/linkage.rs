@@ -64,18 +64,13 @@ pub(crate) trait AgglomerationState: Sync {
     fn initial_distances(&self, rows: Range<usize>, out: &mut Vec<(u32, u32, Candidate)>);
     /// The exact distance between the active clusters `i` and `k`.
     fn exact_distance(&mut self, i: usize, k: usize) -> f64;
-    /// Merges cluster `removed` into `kept` (`kept < removed`; `active`
-    /// already marks `removed` inactive), then appends the distances (or
-    /// lower bounds) from the merged cluster to every other active cluster
-    /// `k` as `(k, candidate)`, for the candidates with `d < 1` only.
-    /// (the same as [`AgglomerationState::candidates`] of `kept` after the merge).
-    fn merge(
-        &mut self,
-        kept: usize,
-        removed: usize,
-        active: &[bool],
-        out: &mut Vec<(u32, Candidate)>,
-    );
+    /// Merges cluster `merge.removed` into `merge.kept` (`kept < removed`;
+    /// `active` already marks `removed` inactive), then appends the
+    /// distances (or lower bounds) from the merged cluster to every other
+    /// active cluster `k` as `(k, candidate)`, for the candidates with
+    /// `d < 1` only (the same as [`AgglomerationState::candidates`] of
+    /// `kept` after the merge).
+    fn merge(&mut self, merge: &Merge, active: &[bool], out: &mut Vec<(u32, Candidate)>);
     /// Appends the distances (or lower bounds) from the active cluster
     /// `cluster` to every other active cluster `k` as `(k, candidate)`, for
     /// the candidates with `d < 1` only.
@@ -155,13 +150,14 @@ pub(crate) fn agglomerate<S: AgglomerationState>(mut state: S, run_capacity: usi
         };
         active[j] = false;
         version[i] += 1;
-        merges.push(Merge {
+        let merge = Merge {
             kept: i,
             removed: j,
             distance: entry.d,
-        });
+        };
         fresh.clear();
-        state.merge(i, j, &active, &mut fresh);
+        state.merge(&merge, &active, &mut fresh);
+        merges.push(merge);
         heap.clear(j);
         let run = fresh
             .iter()

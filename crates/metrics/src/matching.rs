@@ -26,8 +26,7 @@ use crate::{MetricsError, GROUND_TRUTH_OUTLIER, PREDICTED_OUTLIER};
 /// assert!((me - 3.0 / 5.0).abs() < 1e-15);
 /// ```
 pub fn misclassification_error(pred: &[i32], gt: &[i32]) -> Result<f64, MetricsError> {
-    validate(pred, gt)?;
-    Ok(me_unchecked(pred, gt))
+    checked(pred, gt, me_unchecked)
 }
 
 /// Misclassification error over all points, as the multi-model fitting
@@ -57,8 +56,7 @@ pub fn misclassification_error(pred: &[i32], gt: &[i32]) -> Result<f64, MetricsE
 /// assert!((me - 2.0 / 6.0).abs() < 1e-15);
 /// ```
 pub fn misclassification_error_all(pred: &[i32], gt: &[i32]) -> Result<f64, MetricsError> {
-    validate(pred, gt)?;
-    Ok(me_all_unchecked(pred, gt))
+    checked(pred, gt, me_all_unchecked)
 }
 
 /// False-negative rate (method.md "Metrics", FNR).
@@ -81,8 +79,7 @@ pub fn misclassification_error_all(pred: &[i32], gt: &[i32]) -> Result<f64, Metr
 /// assert!((fnr - 1.0 / 3.0).abs() < 1e-15);
 /// ```
 pub fn false_negative_rate(pred: &[i32], gt: &[i32]) -> Result<f64, MetricsError> {
-    validate(pred, gt)?;
-    Ok(fnr_unchecked(pred, gt))
+    checked(pred, gt, fnr_unchecked)
 }
 
 /// Purity (method.md "Metrics", PUR).
@@ -102,8 +99,17 @@ pub fn false_negative_rate(pred: &[i32], gt: &[i32]) -> Result<f64, MetricsError
 /// assert!((pur - 3.0 / 4.0).abs() < 1e-15);
 /// ```
 pub fn purity(pred: &[i32], gt: &[i32]) -> Result<f64, MetricsError> {
+    checked(pred, gt, purity_unchecked)
+}
+
+/// `metric(pred, gt)` once [`validate`] accepts the labels.
+fn checked(
+    pred: &[i32],
+    gt: &[i32],
+    metric: fn(&[i32], &[i32]) -> f64,
+) -> Result<f64, MetricsError> {
     validate(pred, gt)?;
-    Ok(purity_unchecked(pred, gt))
+    Ok(metric(pred, gt))
 }
 
 pub(crate) fn me_unchecked(pred: &[i32], gt: &[i32]) -> f64 {
@@ -214,6 +220,18 @@ pub(crate) fn purity_unchecked(pred: &[i32], gt: &[i32]) -> f64 {
 mod tests {
     use super::*;
 
+    /// A deterministic stream of small labels: `next(m)` is in `0..m`
+    /// (a 64-bit LCG, its high bits).
+    fn lcg(seed: u64) -> impl FnMut(u64) -> i32 {
+        let mut state = seed;
+        move |m| {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            ((state >> 33) % m) as i32
+        }
+    }
+
     /// ME by brute force: the best agreement over every injective map from
     /// predicted clusters to ground-truth motions.
     fn me_brute_force(pred: &[i32], gt: &[i32]) -> f64 {
@@ -259,13 +277,7 @@ mod tests {
     #[test]
     fn me_equals_brute_force_on_small_labellings() {
         // A deterministic family of small labellings (LCG), exhaustive matching.
-        let mut state: u64 = 0x2545_f491_4f6c_dd1d;
-        let mut next = |m: u64| {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            ((state >> 33) % m) as i32
-        };
+        let mut next = lcg(0x2545_f491_4f6c_dd1d);
         for _ in 0..300 {
             let n = 1 + next(25) as usize;
             let gt: Vec<i32> = (0..n).map(|_| next(4)).collect();
@@ -339,13 +351,7 @@ mod tests {
 
     #[test]
     fn me_all_equals_brute_force_on_small_labellings() {
-        let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
-        let mut next = |m: u64| {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            ((state >> 33) % m) as i32
-        };
+        let mut next = lcg(0x9e37_79b9_7f4a_7c15);
         for _ in 0..300 {
             let n = next(25) as usize;
             let gt: Vec<i32> = (0..n).map(|_| next(4)).collect();

@@ -84,16 +84,6 @@ impl BinaryPreferenceMatrix {
         }
     }
 
-    /// Number of points N (rows).
-    pub fn n_points(&self) -> usize {
-        self.n_points
-    }
-
-    /// Number of hypotheses M (columns).
-    pub fn n_hypotheses(&self) -> usize {
-        self.n_hypotheses
-    }
-
     /// `b_ij`. Panics if `i ≥ N` or `j ≥ M`.
     pub fn get(&self, i: usize, j: usize) -> bool {
         assert!(
@@ -112,6 +102,16 @@ impl BinaryPreferenceMatrix {
     /// `j / 64` is `b_ij`, bits at `j ≥ M` are 0. Panics if `i ≥ N`.
     pub fn row_bits(&self, i: usize) -> &[u64] {
         &self.bits[i * self.words_per_row..(i + 1) * self.words_per_row]
+    }
+
+    /// Number of points N (rows).
+    pub fn n_points(&self) -> usize {
+        self.n_points
+    }
+
+    /// Number of hypotheses M (columns).
+    pub fn n_hypotheses(&self) -> usize {
+        self.n_hypotheses
     }
 
     /// Number of 64-bit words per row, `⌈M / 64⌉`.

@@ -317,13 +317,8 @@ impl AgglomerationState for ContinuousState<'_> {
         tanimoto_distance(dot, self.norms[i], self.norms[k])
     }
 
-    fn merge(
-        &mut self,
-        kept: usize,
-        removed: usize,
-        active: &[bool],
-        out: &mut Vec<(u32, Candidate)>,
-    ) {
+    fn merge(&mut self, merge: &Merge, active: &[bool], out: &mut Vec<(u32, Candidate)>) {
+        let (kept, removed) = (merge.kept, merge.removed);
         self.norms[kept] = self.merge_exact(kept, removed);
         let removed_slot = self.slot_of_cluster[removed] as usize;
         self.cluster_of_slot[removed_slot] = DEAD;
@@ -460,7 +455,15 @@ mod tests {
                     }
                     active[removed] = false;
                     let mut fresh = Vec::new();
-                    state.merge(kept, removed, &active, &mut fresh);
+                    state.merge(
+                        &Merge {
+                            kept,
+                            removed,
+                            distance: 0.0,
+                        },
+                        &active,
+                        &mut fresh,
+                    );
                     for &(k, c) in &fresh {
                         let d = state.exact_distance(kept, k as usize);
                         assert!(
@@ -521,7 +524,15 @@ mod tests {
             for removed in (1..n).rev() {
                 active[removed] = false;
                 fresh.clear();
-                state.merge(0, removed, &active, &mut fresh);
+                state.merge(
+                    &Merge {
+                        kept: 0,
+                        removed,
+                        distance: 0.0,
+                    },
+                    &active,
+                    &mut fresh,
+                );
                 assert_eq!(state.index[0].len(), state.value[0].len());
                 assert!(matches!(state.index[0], Cow::Owned(ref v) if v.capacity() == v.len()));
                 assert!(state.index[removed].is_empty());
