@@ -189,10 +189,11 @@ fn batch_map(
     }
 }
 
-/// Many fundamental matrices, each rescaled once ([`rescale_power_of_two`])
-/// and stored entry by entry, for the squared Sampson distances of one match
-/// to all of them: the point-major form of [`sampson_distances_squared`],
-/// equal to it bit for bit (the same operations in the same order).
+/// Many fundamental matrices, each rescaled once (by a power of two, as
+/// for every distance here) and stored entry by entry, for the squared
+/// Sampson distances of one match to all of them: the point-major form of
+/// [`sampson_distances_squared`], equal to it bit for bit (the same
+/// operations in the same order).
 ///
 /// ```
 /// use geometry::{sampson_distances_squared, Correspondences, SampsonModels};
