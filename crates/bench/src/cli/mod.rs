@@ -22,6 +22,20 @@ use clap::{Parser, Subcommand};
 use datasets::Scene;
 use std::path::PathBuf;
 
+/// The peak resident memory of this process so far, in MB (`VmHWM` of
+/// /proc/self/status); `None` where it cannot be read (not Linux).
+pub(crate) fn peak_memory_mb() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb.div_ceil(1000))
+}
+
+/// `", peak memory N MB"`, or nothing where it cannot be read.
+pub(crate) fn peak_memory_text() -> String {
+    peak_memory_mb().map_or_else(String::new, |mb| format!(", peak memory {mb} MB"))
+}
+
 /// The arguments of the subcommands that work on a config's scenes
 /// (`gt-focals`, `filter-quality`, `hypotheses`).
 #[derive(clap::Args)]

@@ -70,10 +70,11 @@ pub fn run(args: Args) -> Result<()> {
     let outcome = run_experiment(&config, &evaluator, &options)?;
     print!("{}", outcome.summary);
     println!(
-        "{} units evaluated, {} already done; {:.1} s wall; results in {}",
+        "{} units evaluated, {} already done; {:.1} s wall{}; results in {}",
         outcome.evaluated,
         outcome.skipped,
         outcome.wall_seconds,
+        super::peak_memory_text(),
         out_dir.display()
     );
     if config.plots.enabled && args.shard.is_none() {

@@ -13,7 +13,7 @@ use crate::plots::{clusters_over_images, PlotFormat};
 use anyhow::{bail, Context, Result};
 use datasets::Scene;
 use image::{ImageFormat, ImageReader, RgbImage};
-use segmentation::{FocalVerdict, MinimalSolver, Params, Profile};
+use segmentation::{FocalVerdict, MinimalSolver, Params, Profile, StageTimings};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -211,7 +211,26 @@ fn summary_text(
     if result.status != "ok" {
         let _ = write!(summary, "\n  note: {}", result.status);
     }
+    summary.push_str(&cost_line(&segmentation.timings));
     summary
+}
+
+/// The summary's line on cost: the wall time of each stage and the
+/// process's peak resident memory.
+fn cost_line(t: &StageTimings) -> String {
+    format!(
+        "\n  took {:.2} s (sampling {:.2}, refinement {:.2}, focals {:.2}, consensus {:.2}, \
+         preferences {:.2}, clustering {:.2}, cluster fits {:.2}){}",
+        t.total,
+        t.sampling,
+        t.refine,
+        t.focal,
+        t.consensus,
+        t.preferences,
+        t.clustering,
+        t.cluster_fit,
+        super::peak_memory_text()
+    )
 }
 
 /// The summary's line on the focal: f_peak and its verdict for semical, the
