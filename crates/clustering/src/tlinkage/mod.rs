@@ -63,8 +63,12 @@ pub(crate) fn merge_sequence_owned(preferences: PreferenceMatrix) -> Vec<Merge> 
 
 /// Marks a slot that holds no active cluster.
 const DEAD: u32 = u32::MAX;
-/// The bound matrix is compacted when half of its slots are dead and it has
-/// more slots than this.
+/// The bound matrix is compacted when at least this share of its slots is
+/// dead (as numerator, denominator) and it has more than
+/// [`MIN_COMPACTION_WIDTH`] slots. Every sweep reads all slots, and a
+/// compaction costs about one sweep of the whole matrix.
+const DEAD_SHARE_TO_COMPACT: (usize, usize) = (1, 8);
+/// See [`DEAD_SHARE_TO_COMPACT`].
 const MIN_COMPACTION_WIDTH: usize = 64;
 
 /// Inner products of exact preference vectors, as sparse sorted lists:
@@ -96,7 +100,7 @@ fn exact_dot(p_index: &[u32], p_value: &[f64], q_index: &[u32], q_value: &[f64])
 /// *Bound part.* An N × M matrix of `u16` upper bounds `q_cj ≥ 65535 φ_cj`,
 /// hypothesis-major (row j holds every slot's `q` for hypothesis j; each
 /// active cluster owns a slot, slots in ascending cluster order, compacted
-/// when half are dead). After a merge, one sweep over the rows of the merged
+/// when an eighth are dead). After a merge, one sweep over the rows of the merged
 /// cluster's hypotheses gives, for every other cluster at once,
 /// `S = Σ_j q_aj · q_kj ≥ 65535² <p_a, p_k>`; the Tanimoto distance at
 /// `dot_upper(S)` is a certified lower bound, pushed instead of the
@@ -208,23 +212,27 @@ impl<'a> ContinuousState<'a> {
         }
     }
 
-    /// Drops the dead slots: rebuilds the bound matrix with the live slots,
-    /// in the same (ascending cluster) order.
+    /// Drops the dead slots: moves the live slots of every row of the bound
+    /// matrix to its front, in the same (ascending cluster) order, and
+    /// gives the rest back.
     fn compact(&mut self) {
         let live: Vec<usize> = (0..self.width)
             .filter(|&s| self.cluster_of_slot[s] != DEAD)
             .collect();
-        let width = live.len().next_multiple_of(LANES);
-        let m = self.bounds.len() / self.width;
-        let mut bounds = vec![0u16; m * width];
-        for (new_row, old_row) in bounds
-            .chunks_exact_mut(width)
-            .zip(self.bounds.chunks_exact(self.width))
-        {
-            for (new, &old) in new_row.iter_mut().zip(&live) {
-                *new = old_row[old];
+        let (old_width, width) = (self.width, live.len().next_multiple_of(LANES));
+        let m = self.bounds.len() / old_width;
+        // In place, row by row: every entry moves to a position no later
+        // than its own (rows shrink, live slots keep their order), so each
+        // is read before anything is written over it.
+        for j in 0..m {
+            let (old_row, new_row) = (j * old_width, j * width);
+            for (k, &s) in live.iter().enumerate() {
+                self.bounds[new_row + k] = self.bounds[old_row + s];
             }
+            self.bounds[new_row + live.len()..new_row + width].fill(0);
         }
+        self.bounds.truncate(m * width);
+        self.bounds.shrink_to_fit();
         let mut cluster_of_slot = vec![DEAD; width];
         for (new, &old) in live.iter().enumerate() {
             let c = self.cluster_of_slot[old];
@@ -232,7 +240,6 @@ impl<'a> ContinuousState<'a> {
             self.slot_of_cluster[c as usize] = new as u32;
         }
         self.width = width;
-        self.bounds = bounds;
         self.cluster_of_slot = cluster_of_slot;
         self.acc = vec![0.0; width];
         self.partial = vec![0.0; width];
@@ -324,7 +331,14 @@ impl AgglomerationState for ContinuousState<'_> {
         self.cluster_of_slot[removed_slot] = DEAD;
         self.slot_of_cluster[removed] = DEAD;
         self.live_slots -= 1;
-        if self.width > MIN_COMPACTION_WIDTH && 2 * self.live_slots <= self.width {
+        let (dead_num, dead_den) = DEAD_SHARE_TO_COMPACT;
+        let dead = self.width - self.live_slots;
+        // At least a lane of dead slots, so that the padding alone never
+        // triggers a compaction.
+        if self.width > MIN_COMPACTION_WIDTH
+            && dead >= LANES
+            && dead * dead_den >= self.width * dead_num
+        {
             self.compact();
         }
         self.candidates(kept, active, out);
@@ -537,6 +551,57 @@ mod tests {
                 assert!(matches!(state.index[0], Cow::Owned(ref v) if v.capacity() == v.len()));
                 assert!(state.index[removed].is_empty());
             }
+        }
+    }
+
+    /// After merges and the in-place compactions they trigger, the bound
+    /// matrix holds exactly the quantised exact vector of every active
+    /// cluster in its slot, and nothing in the other slots.
+    #[test]
+    fn compaction_keeps_every_live_column() {
+        let mut rng = Xorshift(8);
+        let (n, m) = (300, 120);
+        let p = random_matrix(&mut rng, n, m, 0.5);
+        let mut state = ContinuousState::owning(p);
+        let mut active = vec![true; n];
+        let mut fresh = Vec::new();
+        let mut widths = vec![state.width];
+        for removed in (1..n).rev().filter(|r| r % 5 != 0) {
+            let kept = (rng.next() as usize) % removed;
+            if !active[kept] {
+                continue;
+            }
+            active[removed] = false;
+            fresh.clear();
+            state.merge(
+                &Merge {
+                    kept,
+                    removed,
+                    distance: 0.0,
+                },
+                &active,
+                &mut fresh,
+            );
+            widths.push(state.width);
+        }
+        assert!(
+            widths.windows(2).filter(|w| w[1] < w[0]).count() >= 3,
+            "{widths:?}"
+        );
+        assert_eq!(state.bounds.len(), m * state.width);
+        for (slot, &c) in state.cluster_of_slot.iter().enumerate() {
+            let mut expected = vec![0u16; m];
+            if c != DEAD {
+                let c = c as usize;
+                assert!(active[c] && state.slot_of_cluster[c] as usize == slot);
+                for (&j, &v) in state.index[c].iter().zip(state.value[c].iter()) {
+                    expected[j as usize] = quantise(v);
+                }
+            }
+            let column: Vec<u16> = (0..m)
+                .map(|j| state.bounds[j * state.width + slot])
+                .collect();
+            assert_eq!(column, expected, "slot {slot}");
         }
     }
 
