@@ -491,6 +491,43 @@ mod tests {
         }
     }
 
+    /// The initial kernel (blocks of rows) and the sweep (one cluster) give
+    /// a singleton pair the same bound, bit for bit: a refill recomputes
+    /// dropped initial pairs with the sweep and compares them to the floor.
+    #[test]
+    fn initial_bounds_equal_the_sweeps_bit_for_bit() {
+        let mut rng = Xorshift(31);
+        for case in 0..12 {
+            let (n, m) = (
+                20 + (rng.next() % 60) as usize,
+                50 + (rng.next() % 400) as usize,
+            );
+            let p = random_matrix(&mut rng, n, m, [0.1, 0.5, 0.95][case % 3]);
+            for avx2 in [false, avx2_available()] {
+                let mut state = ContinuousState::new(&p);
+                state.avx2 = avx2;
+                let mut initial = Vec::new();
+                state.initial_distances(0..n, &mut initial);
+                let active = vec![true; n];
+                for i in 0..n {
+                    let mut swept = Vec::new();
+                    state.candidates(i, &active, &mut swept);
+                    let later: Vec<(u32, u64)> = swept
+                        .iter()
+                        .filter(|&&(k, _)| k as usize > i)
+                        .map(|&(k, c)| (k, c.d.to_bits()))
+                        .collect();
+                    let rows: Vec<(u32, u64)> = initial
+                        .iter()
+                        .filter(|&&(r, _, _)| r as usize == i)
+                        .map(|&(_, k, c)| (k, c.d.to_bits()))
+                        .collect();
+                    assert_eq!(rows, later, "case {case}, row {i}, avx2 {avx2}");
+                }
+            }
+        }
+    }
+
     #[test]
     fn portable_kernels_give_the_reference_result() {
         let mut rng = Xorshift(7);
