@@ -413,6 +413,50 @@ mod tests {
         PreferenceMatrix::from_rows(&rows).unwrap()
     }
 
+    /// Test case `case`: N in `n.0..n.0 + n.1`, M in `m.0..m.0 + m.1`, the
+    /// density cycling through `densities`.
+    fn random_case(
+        rng: &mut Xorshift,
+        case: usize,
+        n: (usize, u64),
+        m: (usize, u64),
+        densities: [f64; 3],
+    ) -> PreferenceMatrix {
+        let n = n.0 + (rng.next() % n.1) as usize;
+        let m = m.0 + (rng.next() % m.1) as usize;
+        random_matrix(rng, n, m, densities[case % 3])
+    }
+
+    /// The states of `p` for the portable kernels and, where the CPU has
+    /// them, the AVX2 ones.
+    fn kernel_states(p: &PreferenceMatrix) -> Vec<ContinuousState<'_>> {
+        [false, avx2_available()]
+            .into_iter()
+            .map(|avx2| ContinuousState {
+                avx2,
+                ..ContinuousState::new(p)
+            })
+            .collect()
+    }
+
+    /// Merges `removed` into `kept` as the agglomeration does (marked
+    /// inactive first), leaving the merged cluster's candidates in `fresh`.
+    fn absorb(
+        state: &mut ContinuousState,
+        (kept, removed): (usize, usize),
+        active: &mut [bool],
+        fresh: &mut Vec<(u32, Candidate)>,
+    ) {
+        active[removed] = false;
+        fresh.clear();
+        let merge = Merge {
+            kept,
+            removed,
+            distance: 0.0,
+        };
+        state.merge(&merge, active, fresh);
+    }
+
     #[test]
     fn quantisation_rounds_up_and_keeps_zero() {
         let mut rng = Xorshift(99);
@@ -437,14 +481,9 @@ mod tests {
     fn bounds_never_exceed_distances() {
         let mut rng = Xorshift(12345);
         for case in 0..60 {
-            let (n, m) = (
-                2 + (rng.next() % 40) as usize,
-                1 + (rng.next() % 300) as usize,
-            );
-            let p = random_matrix(&mut rng, n, m, [0.05, 0.3, 1.0][case % 3]);
-            for avx2 in [false, avx2_available()] {
-                let mut state = ContinuousState::new(&p);
-                state.avx2 = avx2;
+            let p = random_case(&mut rng, case, (2, 40), (1, 300), [0.05, 0.3, 1.0]);
+            let n = p.n_points();
+            for mut state in kernel_states(&p) {
                 let mut pairs = Vec::new();
                 state.initial_distances(0..n, &mut pairs);
                 for &(i, k, c) in &pairs {
@@ -461,23 +500,13 @@ mod tests {
                     .filter(|&(i, k)| state.exact_distance(i, k) < 1.0)
                     .count();
                 assert!(pairs.len() >= expected);
-                let mut active = vec![true; n];
+                let (mut active, mut fresh) = (vec![true; n], Vec::new());
                 for removed in (1..n).rev().step_by(3) {
                     let kept = (rng.next() as usize) % removed;
                     if !active[kept] || !active[removed] {
                         continue;
                     }
-                    active[removed] = false;
-                    let mut fresh = Vec::new();
-                    state.merge(
-                        &Merge {
-                            kept,
-                            removed,
-                            distance: 0.0,
-                        },
-                        &active,
-                        &mut fresh,
-                    );
+                    absorb(&mut state, (kept, removed), &mut active, &mut fresh);
                     for &(k, c) in &fresh {
                         let d = state.exact_distance(kept, k as usize);
                         assert!(
@@ -498,14 +527,10 @@ mod tests {
     fn initial_bounds_equal_the_sweeps_bit_for_bit() {
         let mut rng = Xorshift(31);
         for case in 0..12 {
-            let (n, m) = (
-                20 + (rng.next() % 60) as usize,
-                50 + (rng.next() % 400) as usize,
-            );
-            let p = random_matrix(&mut rng, n, m, [0.1, 0.5, 0.95][case % 3]);
-            for avx2 in [false, avx2_available()] {
-                let mut state = ContinuousState::new(&p);
-                state.avx2 = avx2;
+            let p = random_case(&mut rng, case, (20, 60), (50, 400), [0.1, 0.5, 0.95]);
+            let n = p.n_points();
+            for mut state in kernel_states(&p) {
+                let avx2 = state.avx2;
                 let mut initial = Vec::new();
                 state.initial_distances(0..n, &mut initial);
                 let active = vec![true; n];
@@ -549,41 +574,19 @@ mod tests {
     }
 
     /// Consuming the matrix (rows merged in place, absorbed rows freed)
-    /// gives the reference result, with bounded runs too, and leaves every
-    /// surviving row at exactly its length.
+    /// leaves every surviving row at exactly its length (its merges are
+    /// checked in `bounded_runs_give_the_reference_result`).
     #[test]
-    fn owned_rows_give_the_reference_result() {
+    fn owned_rows_stay_at_their_length() {
         let mut rng = Xorshift(44);
         for case in 0..30 {
-            let (n, m) = (
-                2 + (rng.next() % 70) as usize,
-                1 + (rng.next() % 150) as usize,
-            );
-            let p = random_matrix(&mut rng, n, m, [0.05, 0.4, 0.9][case % 3]);
-            let expected = reference::t_linkage(&p, 0);
-            for capacity in [RUN_CAPACITY, 2] {
-                let merges = agglomerate(ContinuousState::owning(p.clone()), capacity);
-                assert_eq!(
-                    labels_from_merges(n, merges, SizeRule::MinSize, 0),
-                    expected,
-                    "case {case}, capacity {capacity}"
-                );
-            }
-            let mut state = ContinuousState::owning(p.clone());
+            let p = random_case(&mut rng, case, (2, 70), (1, 150), [0.05, 0.4, 0.9]);
+            let n = p.n_points();
+            let mut state = ContinuousState::owning(p);
             let mut active = vec![true; n];
             let mut fresh = Vec::new();
             for removed in (1..n).rev() {
-                active[removed] = false;
-                fresh.clear();
-                state.merge(
-                    &Merge {
-                        kept: 0,
-                        removed,
-                        distance: 0.0,
-                    },
-                    &active,
-                    &mut fresh,
-                );
+                absorb(&mut state, (0, removed), &mut active, &mut fresh);
                 assert_eq!(state.index[0].len(), state.value[0].len());
                 assert!(matches!(state.index[0], Cow::Owned(ref v) if v.capacity() == v.len()));
                 assert!(state.index[removed].is_empty());
@@ -608,17 +611,7 @@ mod tests {
             if !active[kept] {
                 continue;
             }
-            active[removed] = false;
-            fresh.clear();
-            state.merge(
-                &Merge {
-                    kept,
-                    removed,
-                    distance: 0.0,
-                },
-                &active,
-                &mut fresh,
-            );
+            absorb(&mut state, (kept, removed), &mut active, &mut fresh);
             widths.push(state.width);
         }
         assert!(
@@ -648,19 +641,19 @@ mod tests {
     fn bounded_runs_give_the_reference_result() {
         let mut rng = Xorshift(21);
         for case in 0..40 {
-            let (n, m) = (
-                2 + (rng.next() % 70) as usize,
-                1 + (rng.next() % 150) as usize,
-            );
-            let p = random_matrix(&mut rng, n, m, [0.05, 0.3, 0.8][case % 3]);
+            let p = random_case(&mut rng, case, (2, 70), (1, 150), [0.05, 0.3, 0.8]);
+            let n = p.n_points();
             let expected = reference::t_linkage(&p, 0);
-            for capacity in [1, 2, 3, 7] {
-                let merges = agglomerate(ContinuousState::new(&p), capacity);
-                assert_eq!(
-                    labels_from_merges(n, merges, SizeRule::MinSize, 0),
-                    expected,
-                    "case {case}, capacity {capacity}"
-                );
+            for capacity in [1, 2, 3, 7, RUN_CAPACITY] {
+                // Borrowing the matrix, and consuming it (rows merged in place).
+                for state in [ContinuousState::new(&p), ContinuousState::owning(p.clone())] {
+                    let merges = agglomerate(state, capacity);
+                    assert_eq!(
+                        labels_from_merges(n, merges, SizeRule::MinSize, 0),
+                        expected,
+                        "case {case}, capacity {capacity}"
+                    );
+                }
             }
         }
     }
