@@ -18,9 +18,10 @@ use std::sync::LazyLock;
 /// does not ([`PipelineConfig::on_profile`]).
 ///
 /// The table reads as one flat map: `profile` and `focal_file` are taken
-/// out, and every other key is read by `Params`'s own serde (its defaults,
-/// its unknown-key errors), so the two cannot drift. Written back, it is
-/// `profile` (unless default), `focal_file` (unless empty), then `Params`.
+/// out, an unknown key is refused with the list of every key of the table,
+/// and every other key is read by `Params`'s own serde (its defaults, its
+/// types), so the two cannot drift. Written back, it is `profile` (unless
+/// default), `focal_file` (unless empty), then `Params`.
 ///
 /// ```
 /// let p: bench::config::PipelineConfig = toml::from_str("num_samples = 500").unwrap();
