@@ -11,7 +11,10 @@ pub(crate) const RUN_CAPACITY: usize = 64;
 
 /// An entry of the run of cluster `owner`: the pair `(owner, other)` at
 /// distance (or lower bound) `d`, computed when `other` had version
-/// `tag >> 1`; bit 0 of `tag` says whether `d` is exact.
+/// `tag >> 2`; bit 0 of `tag` says whether `d` is exact, bit 1 whether it
+/// is the exact distance of a popped lower bound (a *refined* entry: a
+/// recomputation of the run would give its pair the lower bound again, so
+/// it is never dropped, see [`PairHeap`]).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct RunEntry {
     pub(crate) d: f64,
@@ -24,16 +27,29 @@ impl RunEntry {
         Self {
             d,
             other,
-            tag: other_version << 1 | u32::from(exact),
+            tag: other_version << 2 | u32::from(exact),
+        }
+    }
+
+    /// The exact distance `d` of a pair whose lower bound was popped.
+    pub(crate) fn refined(d: f64, other: u32, other_version: u32) -> Self {
+        Self {
+            d,
+            other,
+            tag: other_version << 2 | 0b11,
         }
     }
 
     pub(crate) fn other_version(&self) -> u32 {
-        self.tag >> 1
+        self.tag >> 2
     }
 
     pub(crate) fn exact(&self) -> bool {
         self.tag & 1 == 1
+    }
+
+    fn is_refined(&self) -> bool {
+        self.tag & 2 == 2
     }
 
     /// Within one owner's run the pair key `(d, min(owner, other),
@@ -144,15 +160,21 @@ pub(crate) enum RunTop {
 /// discarded whole instead of entry by entry; this only changes how fast
 /// stale entries are discarded, not which entry is the smallest valid one.
 ///
-/// *Bounded runs.* A run keeps only its `capacity` smallest entries; the
-/// smallest entry dropped is kept as the run's *floor* and competes in the
-/// heap of heads like an entry. Every dropped pair has a key `≥` the floor,
-/// so as long as the floor is not the smallest head, no dropped pair can be
-/// the next merge. When it is, the owner's entries are recomputed from its
-/// current vector and those `≥` the floor refill the run (the pairs below the
-/// floor are still in the run, were merged, or changed on the partner's side,
-/// whose own run then holds them). The heap thus holds `O(N · capacity)`
-/// entries instead of up to N²/2, and the merges are unchanged.
+/// *Bounded runs.* A run keeps only its `capacity` smallest entries, besides
+/// its refined ones; the smallest entry dropped is kept as the run's *floor*
+/// and competes in the heap of heads like an entry. Every dropped pair has a
+/// key `≥` the floor, so as long as the floor is not the smallest head, no
+/// dropped pair can be the next merge. When it is, the owner's entries are
+/// recomputed from its current vector and those `≥` the floor refill the run
+/// (the pairs below the floor are still in the run, were merged, or changed
+/// on the partner's side, whose own run then holds them). This needs every
+/// dropped pair to come back with the key it was dropped with, and a
+/// recomputation gives a pair its lower bound, bit for bit as before, not
+/// the exact distance a refined entry holds (which can be above the floor
+/// while its bound is below): refined entries are therefore never dropped.
+/// There is at most one per lower bound popped from the run. The heap thus
+/// holds `O(N · capacity)` entries instead of up to N²/2, and the merges are
+/// unchanged.
 pub(crate) struct PairHeap {
     runs: Vec<BinaryHeap<RunEntry>>,
     floors: Vec<Option<RunEntry>>,
@@ -175,18 +197,28 @@ impl PairHeap {
         }
     }
 
-    /// The `capacity` smallest of `entries` in a vector of their exact size,
-    /// and the smallest of the others; `entries` is left empty (it is a
-    /// scratch buffer: runs never keep a buffer grown to N entries, whose
-    /// shrinking in place would fragment the allocator's memory).
+    /// The refined entries of `entries` and the `capacity` smallest of the
+    /// others, in a vector of their exact size, and the smallest of the rest;
+    /// `entries` is left empty (it is a scratch buffer: runs never keep a
+    /// buffer grown to N entries, whose shrinking in place would fragment
+    /// the allocator's memory).
     pub(crate) fn truncate(
         entries: &mut Vec<RunEntry>,
         capacity: usize,
     ) -> (Vec<RunEntry>, Option<RunEntry>) {
-        let floor = if entries.len() > capacity {
-            entries.select_nth_unstable_by(capacity, RunEntry::key_cmp);
-            let floor = entries[capacity];
-            entries.truncate(capacity);
+        // Refined entries first: they are kept whatever their key.
+        let mut refined = 0;
+        for k in 0..entries.len() {
+            if entries[k].is_refined() {
+                entries.swap(refined, k);
+                refined += 1;
+            }
+        }
+        let keep = refined + capacity;
+        let floor = if entries.len() > keep {
+            entries[refined..].select_nth_unstable_by(capacity, RunEntry::key_cmp);
+            let floor = entries[keep];
+            entries.truncate(keep);
             Some(floor)
         } else {
             None
@@ -283,5 +315,35 @@ impl PairHeap {
     pub(crate) fn take_run(&mut self, owner: usize) -> (Vec<RunEntry>, Option<RunEntry>) {
         let floor = self.floors[owner].take();
         (std::mem::take(&mut self.runs[owner]).into_vec(), floor)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Truncation keeps every refined entry, however large its key, and the
+    /// `capacity` smallest of the others; the floor is the smallest other
+    /// entry dropped.
+    #[test]
+    fn truncation_never_drops_refined_entries() {
+        let mut entries = vec![
+            RunEntry::refined(0.9, 1, 0),
+            RunEntry::new(0.2, 2, 0, false),
+            RunEntry::new(0.5, 3, 0, false),
+            RunEntry::refined(0.8, 4, 0),
+            RunEntry::new(0.4, 5, 0, false),
+            RunEntry::new(0.3, 6, 0, false),
+        ];
+        let (kept, floor) = PairHeap::truncate(&mut entries, 2);
+        let mut others: Vec<u32> = kept.iter().map(|e| e.other).collect();
+        others.sort_unstable();
+        assert_eq!(others, [1, 2, 4, 6]);
+        assert_eq!(floor.map(|f| f.other), Some(5));
+        assert!(entries.is_empty());
+        // Nothing to drop: no floor.
+        let mut few = vec![RunEntry::refined(0.9, 1, 0), RunEntry::new(0.2, 2, 0, true)];
+        let (kept, floor) = PairHeap::truncate(&mut few, 1);
+        assert_eq!((kept.len(), floor.is_none()), (2, true));
     }
 }

@@ -134,7 +134,7 @@ pub(crate) fn agglomerate<S: AgglomerationState>(mut state: S, run_capacity: usi
                 let d = state.exact_distance(owner, other);
                 debug_assert!(d >= entry.d, "lower bound {} above distance {d}", entry.d);
                 if d < 1.0 {
-                    heap.push(owner, RunEntry::new(d, entry.other, version[other], true));
+                    heap.push(owner, RunEntry::refined(d, entry.other, version[other]));
                 }
             }
             heap.push_head(owner, version[owner]);
