@@ -367,12 +367,18 @@ fn profile_sets_every_key_the_config_does_not_give() {
     let dir = tempfile::tempdir().unwrap();
     let matches = dir.path().join("pair.csv");
     write_matches(&matches);
-    // Labels and summary of `sctl segment` with `args`.
+    // Labels and summary of `sctl segment` with `args`, but for the summary's
+    // last line (the time and memory it took, which vary from run to run).
     let segment = |args: &[&std::ffi::OsStr]| {
         let output = segment_1024x768(&matches).args(args).output().unwrap();
         let stderr = String::from_utf8(output.stderr).unwrap();
         assert!(output.status.success(), "{stderr}");
-        (String::from_utf8(output.stdout).unwrap(), stderr)
+        let (summary, cost) = stderr.trim_end().rsplit_once('\n').unwrap();
+        assert!(cost.starts_with("  took "), "{stderr}");
+        (
+            String::from_utf8(output.stdout).unwrap(),
+            summary.to_string(),
+        )
     };
     let config = |name: &str, text: &str| {
         let path = dir.path().join(name);
