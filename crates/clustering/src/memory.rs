@@ -11,7 +11,7 @@
 //! | structure | T-Linkage | J-Linkage |
 //! |---|---|---|
 //! | preferences | `12 · nnz` (u32 index + f64 value) | `N · ⌈M/64⌉ · 8`, ×2 (matrix, cluster copy) |
-//! | bound matrix | `2 · M · ⌈N⌉₁₆` (u16, hypothesis-major) | — |
+//! | bound matrix | `M · ⌈N⌉₁₆` (u8, hypothesis-major) | — |
 //! | heap | `N · (RUN_CAPACITY + 1) · 16` | same |
 //! | per-point scratch | `64 · N` | same |
 //!
@@ -22,8 +22,9 @@
 //! which leaves the caller's matrix untouched, copies the merged vectors
 //! (up to `12 · nnz` more). It is an estimate of the phase alone (not of
 //! the caller's points and hypotheses): on the synthetic scenes of
-//! `examples/peak_memory.rs` the whole process's heap peaks 1–2 MB above
-//! it, the scene's own data (see the crate README).
+//! `examples/peak_memory.rs` the whole process's peak resident memory is
+//! 3–4 MB above it, the program and the scene's own data (see the crate
+//! README).
 
 use crate::heap::RUN_CAPACITY;
 use crate::Linkage;
@@ -61,7 +62,7 @@ pub fn required_memory(
         Linkage::TLinkage => {
             let nonzeros = density * n * m;
             let preferences = BYTES_PER_NONZERO * nonzeros;
-            let bounds = 2.0 * m * (n / 16.0).ceil() * 16.0;
+            let bounds = m * (n / 16.0).ceil() * 16.0;
             preferences + bounds + heap + scratch
         }
         Linkage::JLinkage => 2.0 * n * (m / 64.0).ceil() * 8.0 + heap + scratch,

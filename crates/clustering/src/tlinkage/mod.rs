@@ -7,7 +7,7 @@ use crate::distance::{tanimoto_distance, tanimoto_lower_bound};
 use crate::heap::RUN_CAPACITY;
 use crate::linkage::{agglomerate, labels_from_merges, AgglomerationState, Candidate, Clustering};
 use crate::{Merge, PreferenceMatrix, SizeRule};
-use kernels::{avx2_available, bound_margin, quantise, LANES, LEVELS};
+use kernels::{avx2_available, bound_margin, quantise, Level, LANES, LEVELS};
 use std::borrow::Cow;
 use std::ops::Range;
 
@@ -97,16 +97,17 @@ fn exact_dot(p_index: &[u32], p_value: &[f64], q_index: &[u32], q_value: &[f64])
 /// summed in hypothesis order. Merges (Eq. 40) and every distance that can
 /// decide a merge use only these, with the arithmetic of the reference.
 ///
-/// *Bound part.* An N × M matrix of `u16` upper bounds `q_cj ≥ 65535 φ_cj`,
+/// *Bound part.* An N × M matrix of `u8` upper bounds `q_cj ≥ 255 φ_cj`,
 /// hypothesis-major (row j holds every slot's `q` for hypothesis j; each
 /// active cluster owns a slot, slots in ascending cluster order, compacted
 /// when an eighth are dead). After a merge, one sweep over the rows of the merged
 /// cluster's hypotheses gives, for every other cluster at once,
-/// `S = Σ_j q_aj · q_kj ≥ 65535² <p_a, p_k>`; the Tanimoto distance at
+/// `S = Σ_j q_aj · q_kj ≥ 255² <p_a, p_k>`; the Tanimoto distance at
 /// `dot_upper(S)` is a certified lower bound, pushed instead of the
 /// distance. Exact distances are computed only for the bounds that reach
-/// the top of the heap, typically about one per merge. The `u16` matrix is a
-/// quarter of an f64 one, so the sweeps stay in cache.
+/// the top of the heap, typically about one per merge. The `u8` matrix is
+/// an eighth of an f64 one, and the sweeps, which stream it from memory,
+/// are bound by its size.
 struct ContinuousState<'a> {
     n: usize,
     /// Borrowed from the matrix until the cluster first absorbs another
@@ -116,7 +117,7 @@ struct ContinuousState<'a> {
     norms: Vec<f64>,
     /// Slots per row of `bounds`, a multiple of [`LANES`].
     width: usize,
-    bounds: Vec<u16>,
+    bounds: Vec<Level>,
     cluster_of_slot: Vec<u32>,
     slot_of_cluster: Vec<u32>,
     live_slots: usize,
@@ -159,7 +160,7 @@ impl<'a> ContinuousState<'a> {
     fn from_rows(m: usize, index: Vec<Cow<'a, [u32]>>, value: Vec<Cow<'a, [f64]>>) -> Self {
         let n = index.len();
         let width = n.next_multiple_of(LANES);
-        let mut bounds = vec![0u16; m * width];
+        let mut bounds = vec![0 as Level; m * width];
         let mut norms = Vec::with_capacity(n);
         for (i, (hypotheses, values)) in index.iter().zip(&value).enumerate() {
             let mut norm = 0.0;
@@ -192,10 +193,12 @@ impl<'a> ContinuousState<'a> {
     /// An upper bound of the computed inner product `<p, q>` from the bound
     /// sum `S` of the quantised vectors.
     ///
-    /// In exact arithmetic `Σ_j q_pj q_qj / 65535² ≥ <p, q>`, since every
-    /// `q ≥ 65535 φ`. The kernels form the products and partial sums of at
+    /// In exact arithmetic `Σ_j q_pj q_qj / 255² ≥ <p, q>`, since every
+    /// `q ≥ 255 φ`. The kernels form the products and partial sums of at
     /// most [`kernels::CHUNK`] terms in f32 (relative loss at most `γ³²_(C+1)`, all
-    /// terms being non-negative integers-valued products, so no underflow),
+    /// terms being non-negative integers-valued products, so no underflow;
+    /// with one-byte levels they are even exact, every product and chunk
+    /// sum being an integer below 2²⁴),
     /// then add the partial sums in f64 (loss at most `γ⁶⁴_M`); the ordered
     /// f64 sum of the exact inner product exceeds the real value by at most
     /// `1 + γ⁶⁴_(M+1)`. [`bound_margin`] covers all of these and the
@@ -383,7 +386,7 @@ mod tests {
     /// Values that stress the quantisation: 1, the Eq. 38 minimum, values on
     /// and next to the quantisation grid, tiny and subnormal values.
     fn awkward_value(rng: &mut Xorshift) -> f64 {
-        let k = (rng.next() % 65536) as f64;
+        let k = (rng.next() % (u64::from(Level::MAX) + 1)) as f64;
         match rng.next() % 8 {
             0 => 1.0,
             1 => (-5.0f64).exp(),
@@ -461,7 +464,7 @@ mod tests {
     fn quantisation_rounds_up_and_keeps_zero() {
         let mut rng = Xorshift(99);
         assert_eq!(quantise(0.0), 0);
-        assert_eq!(quantise(1.0), 65535);
+        assert_eq!(quantise(1.0), Level::MAX);
         assert_eq!(quantise(f64::from_bits(1)), 1);
         for _ in 0..100_000 {
             let v = awkward_value(&mut rng);
@@ -620,7 +623,7 @@ mod tests {
         );
         assert_eq!(state.bounds.len(), m * state.width);
         for (slot, &c) in state.cluster_of_slot.iter().enumerate() {
-            let mut expected = vec![0u16; m];
+            let mut expected = vec![0 as Level; m];
             if c != DEAD {
                 let c = c as usize;
                 assert!(active[c] && state.slot_of_cluster[c] as usize == slot);
@@ -628,7 +631,7 @@ mod tests {
                     expected[j as usize] = quantise(v);
                 }
             }
-            let column: Vec<u16> = (0..m)
+            let column: Vec<Level> = (0..m)
                 .map(|j| state.bounds[j * state.width + slot])
                 .collect();
             assert_eq!(column, expected, "slot {slot}");
