@@ -3,10 +3,13 @@
 
 use crate::adaptive::{stop_after, SupportTracker};
 use crate::minimal::{candidates, choose};
-use crate::{EightPoint, Matches, MinimalSampler, MinimalSolver, Params, SegmentationError};
+use crate::{
+    subset_indices, EightPoint, Matches, MinimalSampler, MinimalSolver, Params, SegmentationError,
+};
 use geometry::{eight_point_normalized, eight_point_plain, Correspondences, IrlsWorkspace};
 use nalgebra::Matrix3;
 use rayon::prelude::*;
+use std::borrow::Cow;
 use std::ops::Range;
 use std::time::Instant;
 
@@ -15,8 +18,14 @@ use std::time::Instant;
 /// parameter set that shares that key.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GeneratedHypotheses {
-    /// The correspondences in principal-point-centred coordinates.
+    /// The correspondences the hypotheses were drawn from and steps 7–9
+    /// cluster, in principal-point-centred coordinates: the matches of
+    /// `subset`.
     pub points: Correspondences,
+    /// The indices of those matches among the input's, increasing: all of
+    /// them unless [`Params::cluster_subset`] is smaller than N
+    /// ([`crate::subset_indices`]).
+    pub subset: Vec<usize>,
     /// Whether hypothesis `j`'s minimal sample gave a fit. With the
     /// 8-point (or one solution per sample) hypothesis `j` is sample `j`;
     /// with `minimal_solutions = "all"` a sample gives one hypothesis per
@@ -76,8 +85,18 @@ pub fn generate_hypotheses(
     matches: &Matches,
     params: &Params,
 ) -> Result<GeneratedHypotheses, SegmentationError> {
-    let points = centred_points(matches, params)?;
-    let sampler = MinimalSampler::new(matches.points1, params.sampling, params.sample_size());
+    let all = centred_points(matches, params)?;
+    let subset = subset_indices(params.seed, all.len(), params.cluster_subset);
+    let (points, pixels1) = if subset.len() == all.len() {
+        (all, Cow::Borrowed(matches.points1))
+    } else {
+        let pixels1 = subset.iter().map(|&i| matches.points1[i]).collect();
+        let points = all
+            .subset(&subset)
+            .map_err(SegmentationError::InvalidPoints)?;
+        (points, Cow::Owned(pixels1))
+    };
+    let sampler = MinimalSampler::new(&pixels1, params.sampling, params.sample_size());
     let batch = match params.adaptive_batch {
         0 => params.num_samples,
         b => b,
@@ -107,6 +126,7 @@ pub fn generate_hypotheses(
     }
     Ok(GeneratedHypotheses {
         points,
+        subset,
         fitted,
         models,
         sampling_seconds,

@@ -20,7 +20,9 @@
 //!    keeps every refined hypothesis;
 //! 7. preferences (Eq. 38), 8. T-Linkage (Eqs. 39–40) or J-Linkage and
 //! 9. the size filter ([`segment_with`]), optionally followed by a final
-//!    assignment to refitted cluster models ([`reassign`]).
+//!    assignment to refitted cluster models ([`reassign`]). On a large
+//!    scene steps 1–9 may run on a random subset of the matches, the
+//!    others joining the clusters afterwards ([`extend_labels`]).
 //!
 //! All geometry runs in principal-point-centred pixel coordinates: every F
 //! of a [`Segmentation`] satisfies `x2ᵀ F x1 = 0` for
@@ -42,6 +44,7 @@ mod profile;
 mod result;
 mod sampling;
 mod segment;
+mod subset;
 mod variants;
 mod weight_sets;
 
@@ -59,7 +62,8 @@ pub use merge::{merge_explained, InlierBits, MERGE_SHARE};
 pub use params::{
     DuplicateFilter, EightPoint, FinalAssignment, FocalKey, FocalSolver, HypothesisKey,
     ImplausibleFocal, IrlsFit, Linkage, LocalTest, Method, MinimalSolutions, MinimalSolver,
-    OnFailure, ParamError, Params, Sampling, SizeRule, WeightPreset, WeightSets, PARAM_KEYS,
+    OnFailure, ParamError, Params, Sampling, SizeRule, SubsetExtension, WeightPreset, WeightSets,
+    PARAM_KEYS,
 };
 pub use profile::Profile;
 pub use result::{
@@ -70,3 +74,4 @@ pub use sampling::{
     hypothesis_rng, minimal_sample, neighbourhood_size, splitmix64, MinimalSampler,
 };
 pub use segment::{fit_cluster, segment, segment_with};
+pub use subset::{extend_labels, subset_indices, ClusteredSubset};

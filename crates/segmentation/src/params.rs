@@ -14,7 +14,7 @@ use thiserror::Error;
 
 pub use crate::variants::{
     DuplicateFilter, EightPoint, FinalAssignment, FocalSolver, ImplausibleFocal, LocalTest, Method,
-    MinimalSolutions, MinimalSolver, Sampling,
+    MinimalSolutions, MinimalSolver, Sampling, SubsetExtension,
 };
 pub use crate::weight_sets::{WeightPreset, WeightSets};
 
@@ -169,6 +169,22 @@ pub struct Params {
     /// the thesis) or `same-inliers` (one per distinct inlier set,
     /// [`DuplicateFilter`]). Default `none`.
     pub duplicate_filter: DuplicateFilter,
+    /// Steps 1–9 on at most this many matches, drawn at random per seed
+    /// ([`crate::subset_indices`]); every other match then joins the
+    /// cluster it is nearest to ([`Params::subset_extension`]). T-Linkage
+    /// costs the square of the matches it clusters, so this bounds the
+    /// time of large scenes. `0`: all matches (the thesis); otherwise at
+    /// least `mss_size`. Default 0.
+    pub cluster_subset: usize,
+    /// How the matches left out of `cluster_subset` join the clusters
+    /// ([`SubsetExtension`]): `preference` (the nearest mean preference
+    /// vector in Tanimoto distance, the subset's outliers a class of their
+    /// own), `preference-explained` (the same, then an outlier unless the
+    /// cluster's best-supported hypothesis explains it within `thr_px`) or
+    /// `model` (the nearest best-supported hypothesis within `thr_px`).
+    /// Default `preference-explained` (results/README.md, "Real-sized
+    /// scenes").
+    pub subset_extension: SubsetExtension,
     /// Memory bound of the preferences and the clustering (steps 7–8), MB
     /// (10⁶ bytes; [`clustering::required_memory`]). With a bound the
     /// segmentation stops before drawing a sample when N points and
@@ -231,6 +247,8 @@ impl Params {
             size_rule: SizeRule::MinSize,
             final_assignment: FinalAssignment::None,
             duplicate_filter: DuplicateFilter::None,
+            cluster_subset: 0,
+            subset_extension: SubsetExtension::PreferenceExplained,
             max_memory_mb: 0,
             seed: 12345,
         }
@@ -238,7 +256,7 @@ impl Params {
 }
 
 /// The keys of [`Params`] in declaration order.
-pub const PARAM_KEYS: [&str; 32] = [
+pub const PARAM_KEYS: [&str; 34] = [
     "method",
     "num_samples",
     "adaptive_batch",
@@ -269,6 +287,8 @@ pub const PARAM_KEYS: [&str; 32] = [
     "size_rule",
     "final_assignment",
     "duplicate_filter",
+    "cluster_subset",
+    "subset_extension",
     "max_memory_mb",
     "seed",
 ];
@@ -324,6 +344,15 @@ impl Params {
                     "must be at least 8 (the 8-point algorithm; the other minimal solvers \
                      draw their own sample size and still refine on 8 or more), got {}",
                     self.mss_size
+                ),
+            ));
+        }
+        if self.cluster_subset != 0 && self.cluster_subset < self.mss_size {
+            return Err(ParamError::new(
+                "cluster_subset",
+                format!(
+                    "must be 0 (all matches) or at least mss_size = {}, got {}",
+                    self.mss_size, self.cluster_subset
                 ),
             ));
         }
@@ -386,6 +415,7 @@ impl Params {
         HypothesisKey {
             seed: self.seed,
             num_samples: self.num_samples,
+            cluster_subset: self.cluster_subset,
             adaptive_batch: self.adaptive_batch,
             adaptive_tolerance_bits: self.adaptive_tolerance.to_bits(),
             mss_size: self.mss_size,
@@ -400,6 +430,15 @@ impl Params {
             irls_unit_weight_fallback: self.irls_unit_weight_fallback,
             irls_sigma_offset_bits: self.irls_sigma_offset_px.to_bits(),
             irls_polish: self.irls_polish,
+        }
+    }
+
+    /// How many of `n` matches steps 1–9 run on: `n`, or
+    /// [`Params::cluster_subset`] when that is smaller and not 0.
+    pub fn clustered_matches(&self, n: usize) -> usize {
+        match self.cluster_subset {
+            0 => n,
+            size => size.min(n),
         }
     }
 
@@ -440,6 +479,7 @@ impl Params {
 pub struct HypothesisKey {
     seed: u64,
     num_samples: usize,
+    cluster_subset: usize,
     adaptive_batch: usize,
     adaptive_tolerance_bits: u64,
     mss_size: usize,
@@ -472,7 +512,7 @@ mod tests {
 
     #[test]
     fn every_range_check_names_its_key() {
-        let cases: [(&str, Params); 7] = [
+        let cases: [(&str, Params); 8] = [
             (
                 "num_samples",
                 Params {
@@ -484,6 +524,13 @@ mod tests {
                 "mss_size",
                 Params {
                     mss_size: 7,
+                    ..Default::default()
+                },
+            ),
+            (
+                "cluster_subset",
+                Params {
+                    cluster_subset: 5,
                     ..Default::default()
                 },
             ),
@@ -563,6 +610,11 @@ mod tests {
             ..a.clone()
         };
         assert_ne!(a.hypothesis_key(), localized.hypothesis_key());
+        let subset = Params {
+            cluster_subset: 1000,
+            ..a.clone()
+        };
+        assert_ne!(a.hypothesis_key(), subset.hypothesis_key());
         let refit = Params {
             final_assignment: FinalAssignment::Refit,
             ..a.clone()

@@ -4,14 +4,16 @@
 use crate::assignment::members;
 use crate::merge::inlier_words;
 use crate::{
-    estimate_hypothesis_focals, focal_filter, generate_hypotheses, merge_explained, reassign,
-    ClusterModel, DuplicateFilter, FinalAssignment, FocalVerdict, GeneratedHypotheses, Hypothesis,
-    HypothesisCounts, HypothesisFocals, HypothesisStatus, InlierBits, Matches, Method,
-    MinimalSolutions, MinimalSolver, Params, Segmentation, SegmentationError, StageTimings,
+    centred_points, estimate_hypothesis_focals, extend_labels, focal_filter, generate_hypotheses,
+    merge_explained, reassign, ClusterModel, ClusteredSubset, DuplicateFilter, FinalAssignment,
+    FocalVerdict, GeneratedHypotheses, Hypothesis, HypothesisCounts, HypothesisFocals,
+    HypothesisStatus, InlierBits, Matches, Method, MinimalSolutions, MinimalSolver, Params,
+    Segmentation, SegmentationError, StageTimings,
 };
 use clustering::{ClusteringParams, Preferences};
 use geometry::{eight_point_normalized, sampson_distances_squared, Correspondences, SampsonModels};
 use nalgebra::Matrix3;
+use std::borrow::Cow;
 use std::collections::HashSet;
 use std::time::Instant;
 
@@ -43,7 +45,7 @@ pub fn segment(matches: &Matches, params: &Params) -> Result<Segmentation, Segme
     let started = Instant::now();
     params.validate()?;
     clustering_params(params).check_memory(
-        matches.len(),
+        params.clustered_matches(matches.len()),
         params.num_samples,
         ASSUMED_PREFERENCE_DENSITY,
     )?;
@@ -115,7 +117,7 @@ pub fn segment_with(
         .collect();
     counts.kept = kept.len();
     let mut segmentation = Segmentation {
-        labels: vec![-1; generated.points.len()],
+        labels: vec![-1; matches.len()],
         counts,
         hypotheses,
         consensus,
@@ -130,7 +132,7 @@ pub fn segment_with(
     if kept.is_empty() {
         segmentation.degenerate = Some(nothing_kept_reason(generated).to_string());
     } else {
-        cluster_kept(&mut segmentation, generated, &kept, params)?;
+        cluster_kept(&mut segmentation, matches, generated, &kept, params)?;
     }
     segmentation.timings.total = started.elapsed().as_secs_f64() + shared_seconds;
     Ok(segmentation)
@@ -143,7 +145,11 @@ fn check_stages(
     generated: &GeneratedHypotheses,
     focals: Option<&HypothesisFocals>,
 ) -> Result<(), SegmentationError> {
-    let (n, m) = (generated.points.len(), generated.models.len());
+    let (n, m) = (generated.subset.len(), generated.models.len());
+    let subset_len = params.clustered_matches(matches.len());
+    let subset_ok = generated.points.len() == n
+        && n == subset_len
+        && generated.subset.last().map_or(true, |&i| i < matches.len());
     // With every solution of a minimal sample kept, a sample may give
     // several hypotheses; otherwise there is one per sample.
     let one_per_sample = params.minimal_solver == MinimalSolver::EightPoint
@@ -156,10 +162,9 @@ fn check_stages(
         (false, false) => m >= params.num_samples,
         (false, true) => m >= 1,
     };
-    if n != matches.len() || !m_matches {
+    if !subset_ok || !m_matches {
         return Err(SegmentationError::StageMismatch(format!(
-            "hypotheses generated for {n} points and M = {m}, not {} and {}",
-            matches.len(),
+            "hypotheses generated for {n} points and M = {m}, not {subset_len} and {}",
             params.num_samples
         )));
     }
@@ -200,9 +205,12 @@ fn nothing_kept_reason(generated: &GeneratedHypotheses) -> &'static str {
 
 /// Steps 7–9 on the kept hypotheses: preferences (Eq. 38), T-/J-Linkage,
 /// the size filter, the final assignment ([`Params::final_assignment`],
-/// timed with the cluster fits) and the 8-point F of each final cluster.
+/// timed with the cluster fits), the matches left out of a
+/// [`Params::cluster_subset`] ([`extend_labels`], timed likewise) and the
+/// 8-point F of each final cluster.
 fn cluster_kept(
     segmentation: &mut Segmentation,
+    matches: &Matches,
     generated: &GeneratedHypotheses,
     kept: &[usize],
     params: &Params,
@@ -211,12 +219,12 @@ fn cluster_kept(
     let clustering_params = clustering_params(params);
     // Step 7: preferences, one point (row) at a time.
     let t = Instant::now();
-    let (preferences, inliers) = build_preferences(segmentation, generated, kept, params)?;
+    let step7 = build_preferences(segmentation, generated, kept, params)?;
     segmentation.timings.preferences = t.elapsed().as_secs_f64();
 
     // Steps 8–9: linkage and size filter.
     let t = Instant::now();
-    let clustering = clustering_params.try_cluster_owned(preferences)?;
+    let clustering = clustering_params.try_cluster_owned(step7.preferences)?;
     segmentation.timings.clustering = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
@@ -231,14 +239,36 @@ fn cluster_kept(
         FinalAssignment::Merge => with_count(merge_explained(
             &clustering.labels,
             clustering.clusters_after_filter,
-            &inliers,
+            &step7.inliers,
         )),
     };
-    segmentation.clusters = cluster_models(points, &labels, clusters);
+    let (labels, all_points) = if generated.subset.len() < matches.len() {
+        let all = centred_points(matches, params)?;
+        let subset = ClusteredSubset {
+            indices: &generated.subset,
+            labels: &labels,
+            clusters,
+        };
+        let tau = params.thr_px * params.thr_px;
+        let labels = extend_labels(&all, subset, &step7.models, tau, params.subset_extension);
+        (labels, Cow::Owned(all))
+    } else {
+        (labels, Cow::Borrowed(points))
+    };
+    segmentation.clusters = cluster_models(&all_points, &labels, clusters);
     segmentation.timings.cluster_fit = t.elapsed().as_secs_f64();
     segmentation.clusters_before_filter = clustering.clusters_before_filter;
     segmentation.labels = labels;
     Ok(())
+}
+
+/// What step 7 gives steps 8–9: the preferences, the inlier sets the
+/// merge needs (empty otherwise) and the models that entered the
+/// preferences, in order.
+struct PreferenceStage {
+    preferences: Preferences,
+    inliers: InlierBits,
+    models: Vec<Matrix3<f64>>,
 }
 
 /// Step 7 on the kept hypotheses (Eq. 38, or J-Linkage's `r ≤ τ`): the
@@ -254,7 +284,7 @@ fn build_preferences(
     generated: &GeneratedHypotheses,
     kept: &[usize],
     params: &Params,
-) -> Result<(Preferences, InlierBits), SegmentationError> {
+) -> Result<PreferenceStage, SegmentationError> {
     let points = &generated.points;
     let tau = params.thr_px * params.thr_px;
     let dedup = params.duplicate_filter == DuplicateFilter::SameInliers;
@@ -289,7 +319,11 @@ fn build_preferences(
         tau,
         |i, out| models.distances_squared(points.point1(i), points.point2(i), out),
     )?;
-    Ok((preferences, inliers))
+    Ok(PreferenceStage {
+        preferences,
+        inliers,
+        models: entering,
+    })
 }
 
 /// Labels numbered 0, 1, … by first appearance (−1 outliers) with their

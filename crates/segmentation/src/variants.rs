@@ -171,3 +171,20 @@ param_enum! {
         SameInliers,
     }
 }
+
+param_enum! {
+    /// How the matches left out of a [`crate::Params::cluster_subset`] join
+    /// the clusters ([`crate::extend_labels`]).
+    pub enum SubsetExtension {
+        /// By preference (Eq. 38): the cluster, or the subset's outliers,
+        /// whose mean preference vector is nearest in Tanimoto distance
+        /// (Eq. 39), as T-Linkage would join them.
+        Preference,
+        /// By model: the nearest, within `thr_px`, of each cluster's
+        /// best-supported hypothesis (the model of [`crate::merge_explained`]).
+        Model,
+        /// By preference, as `Preference`, and an outlier unless the joined
+        /// cluster's best-supported hypothesis explains it within `thr_px`.
+        PreferenceExplained,
+    }
+}

@@ -572,3 +572,30 @@ fn a_size_rule_above_the_floor_only_removes_clusters() {
         .to_string()
         .contains("`size_rule`"));
 }
+
+#[test]
+fn clustering_a_subset_recovers_noise_free_labels_at_any_thread_count() {
+    use segmentation::SubsetExtension;
+    for (category, index) in [(1, 900), (2, 900)] {
+        let scene = noise_free_scene(category, index);
+        let truth = scene.labels.clone().unwrap();
+        for how in [SubsetExtension::Preference, SubsetExtension::Model] {
+            let params = Params {
+                num_samples: 300,
+                cluster_subset: truth.len() / 2,
+                subset_extension: how,
+                ..Params::default()
+            };
+            let one = in_pool(1, || segment(&scene, &params).unwrap());
+            let two = in_pool(2, || segment(&scene, &params).unwrap());
+            let what = format!("{} {how:?}", scene.name);
+            assert_eq!(one.labels, two.labels, "{what}");
+            assert_eq!(one.labels.len(), truth.len(), "{what}");
+            assert!(same_partition_on_inliers(&one.labels, &truth), "{what}");
+            assert_eq!(one.clusters.len(), scene.num_motions(), "{what}");
+            // The clusters' sizes count every match, not the subset's.
+            let labelled = one.labels.iter().filter(|&&l| l >= 0).count();
+            assert_eq!(one.clusters.iter().map(|c| c.size).sum::<usize>(), labelled);
+        }
+    }
+}

@@ -1,0 +1,447 @@
+//! Clustering a subset of a large scene (`cluster_subset = n`): steps 1–9
+//! run on `n` matches drawn at random, and every other match then joins
+//! the cluster it is nearest to ([`crate::SubsetExtension`]). T-Linkage's
+//! cost grows with the square of the number of points it clusters; a
+//! match left out costs one preference vector (its Sampson distances to
+//! the kept hypotheses) and a comparison with each cluster.
+//!
+//! The same idea (cluster a sample, then classify the rest) is how
+//! agglomerative clustering is scaled in CURE (Guha, Rastogi & Shim,
+//! SIGMOD 1998). The classifier is T-Linkage's own measure, the Tanimoto
+//! distance between preference vectors (Eq. 39), optionally checked with
+//! the geometric test of Progressive-X's final assignment (Barath & Matas,
+//! ICCV 2019).
+
+use crate::assignment::{drop_small_and_renumber, members};
+use crate::{hypothesis_rng, SubsetExtension};
+use clustering::preference;
+use geometry::{sampson_distances_squared, Correspondences, SampsonModels};
+use nalgebra::Matrix3;
+use rayon::prelude::*;
+
+/// The matches steps 1–9 run on when `cluster_subset = size`: all of
+/// `0..n` when `size` is 0 or at least `n`, else `size` distinct indices
+/// drawn uniformly, increasing ([`crate::Params::clustered_matches`] of
+/// them). They come from stream 2⁶⁴ − 1 of
+/// [`hypothesis_rng`] (no hypothesis draws from it), so they depend on the
+/// seed and `n` only.
+///
+/// ```
+/// let s = segmentation::subset_indices(12345, 5000, 1000);
+/// assert_eq!(s.len(), 1000);
+/// assert!(s.windows(2).all(|w| w[0] < w[1]) && s[999] < 5000);
+/// assert_eq!(segmentation::subset_indices(12345, 800, 1000), (0..800).collect::<Vec<_>>());
+/// ```
+pub fn subset_indices(seed: u64, n: usize, size: usize) -> Vec<usize> {
+    if size == 0 || size >= n {
+        return (0..n).collect();
+    }
+    let mut rng = hypothesis_rng(seed, usize::MAX);
+    let mut indices = rand::seq::index::sample(&mut rng, n, size).into_vec();
+    indices.sort_unstable();
+    indices
+}
+
+/// The clustered subset and its labels (clusters `0..clusters`, −1
+/// outliers): `labels[k]` is the label of match `indices[k]`.
+#[derive(Debug, Clone, Copy)]
+pub struct ClusteredSubset<'a> {
+    /// Indices of the clustered matches among all of them, increasing.
+    pub indices: &'a [usize],
+    /// Their labels after steps 8–9 and the final assignment.
+    pub labels: &'a [i32],
+    /// The number of clusters.
+    pub clusters: usize,
+}
+
+/// The labels of all `points` (principal-point centred) from those of the
+/// clustered `subset`, given the `models` that entered the preferences and
+/// `tau = thr_px²`. A match of the subset keeps its label; any other match
+/// joins a cluster by `how`:
+///
+/// * [`SubsetExtension::Preference`]: its preference vector `p` (Eq. 38)
+///   against the mean preference vector `μ` of each cluster's matches and
+///   of the subset's outliers. It joins the class of largest Tanimoto
+///   similarity `p·μ / (|p|² + |μ|² − p·μ)` (one minus Eq. 39's distance;
+///   the lower label on ties, the outliers last), and is an outlier when
+///   that class is the outliers' or it prefers no model;
+/// * [`SubsetExtension::Model`]: each cluster's model is the hypothesis
+///   with the most inliers (`r ≤ tau`, Eq. 23) among its matches, and the
+///   match goes to the model of smallest squared Sampson distance when it
+///   is `≤ tau`, else it is an outlier;
+/// * [`SubsetExtension::PreferenceExplained`]: as `Preference`, and the
+///   match is an outlier unless the joined cluster's model (as for
+///   `Model`) explains it (`≤ tau`).
+///
+/// Labels are then renumbered 0, 1, … by first appearance, as the
+/// clustering numbers them.
+pub fn extend_labels(
+    points: &Correspondences,
+    subset: ClusteredSubset,
+    models: &[Matrix3<f64>],
+    tau: f64,
+    how: SubsetExtension,
+) -> Vec<i32> {
+    let cluster_models = || -> Vec<Matrix3<f64>> {
+        best_models(points, subset, models, tau)
+            .into_iter()
+            .map(|h| h.map_or(Matrix3::zeros(), |h| models[h]))
+            .collect()
+    };
+    let mut labels = match how {
+        SubsetExtension::Preference => nearest_mean_preference(points, subset, models, tau),
+        SubsetExtension::Model => nearest_within(points, &cluster_models(), tau),
+        SubsetExtension::PreferenceExplained => {
+            let mut labels = nearest_mean_preference(points, subset, models, tau);
+            let cluster_models = cluster_models();
+            for (i, label) in labels.iter_mut().enumerate() {
+                if let Ok(c) = usize::try_from(*label) {
+                    if sampson_distance_squared(&cluster_models[c], points, i) > tau {
+                        *label = -1;
+                    }
+                }
+            }
+            labels
+        }
+    };
+    for (&i, &label) in subset.indices.iter().zip(subset.labels) {
+        labels[i] = label;
+    }
+    drop_small_and_renumber(&labels, subset.clusters, 0)
+}
+
+/// The preference vector (Eq. 38) of match `i` against `models`, into `out`.
+fn preference_row(
+    models: &SampsonModels,
+    points: &Correspondences,
+    i: usize,
+    tau: f64,
+    out: &mut [f64],
+) {
+    models.distances_squared(points.point1(i), points.point2(i), out);
+    out.iter_mut().for_each(|v| *v = preference(*v, tau));
+}
+
+/// The mean preference vectors of the subset's classes (each cluster,
+/// then the outliers), hypothesis-major: entry `j · classes + c` is class
+/// `c`'s mean preference for hypothesis `j`.
+struct MeanPreferences {
+    classes: usize,
+    means: Vec<f64>,
+    /// `|μ_c|²` of each class.
+    norms: Vec<f64>,
+}
+
+/// Matches of the subset summed per task: fixed chunks, added in order, so
+/// the means do not depend on the thread count.
+const SUM_CHUNK: usize = 64;
+
+impl MeanPreferences {
+    /// The means of the subset's clusters and of its outliers (zero when
+    /// there are none).
+    fn new(
+        points: &Correspondences,
+        subset: ClusteredSubset,
+        models: &SampsonModels,
+        tau: f64,
+    ) -> Self {
+        let (m, classes) = (models.len(), subset.clusters + 1);
+        let class = |l: i32| {
+            usize::try_from(l)
+                .ok()
+                .filter(|&c| c < subset.clusters)
+                .unwrap_or(subset.clusters)
+        };
+        let partial_sums: Vec<Vec<f64>> = subset
+            .indices
+            .par_chunks(SUM_CHUNK)
+            .zip(subset.labels.par_chunks(SUM_CHUNK))
+            .map(|(indices, labels)| {
+                let (mut sums, mut row) = (vec![0.0; m * classes], vec![0.0; m]);
+                for (&i, &label) in indices.iter().zip(labels) {
+                    preference_row(models, points, i, tau, &mut row);
+                    let c = class(label);
+                    for (j, &v) in row.iter().enumerate().filter(|(_, &v)| v > 0.0) {
+                        sums[j * classes + c] += v;
+                    }
+                }
+                sums
+            })
+            .collect();
+        let mut means = vec![0.0; m * classes];
+        for sums in &partial_sums {
+            means.iter_mut().zip(sums).for_each(|(a, b)| *a += b);
+        }
+        let mut counts = vec![0usize; classes];
+        subset.labels.iter().for_each(|&l| counts[class(l)] += 1);
+        let mut norms = vec![0.0; classes];
+        for (j, mean) in means.iter_mut().enumerate() {
+            let c = j % classes;
+            *mean /= counts[c].max(1) as f64;
+            norms[c] += *mean * *mean;
+        }
+        Self {
+            classes,
+            means,
+            norms,
+        }
+    }
+
+    /// The class of largest Tanimoto similarity to the preference vector
+    /// `row` (the first on ties), None when it is 0 for every class.
+    fn nearest(&self, row: &[f64], dots: &mut [f64]) -> Option<usize> {
+        dots.fill(0.0);
+        let mut p2 = 0.0;
+        for (j, &v) in row.iter().enumerate().filter(|(_, &v)| v > 0.0) {
+            p2 += v * v;
+            let means = &self.means[j * self.classes..(j + 1) * self.classes];
+            dots.iter_mut().zip(means).for_each(|(d, mu)| *d += v * mu);
+        }
+        let mut best = None;
+        let mut best_similarity = 0.0;
+        for (c, (&dot, &m2)) in dots.iter().zip(&self.norms).enumerate() {
+            let similarity = if dot > 0.0 {
+                dot / (p2 + m2 - dot)
+            } else {
+                0.0
+            };
+            if similarity > best_similarity {
+                (best, best_similarity) = (Some(c), similarity);
+            }
+        }
+        best
+    }
+}
+
+/// [`SubsetExtension::Preference`]: the label of each match outside the
+/// subset (−1 inside it), in parallel; independent of the thread count.
+fn nearest_mean_preference(
+    points: &Correspondences,
+    subset: ClusteredSubset,
+    models: &[Matrix3<f64>],
+    tau: f64,
+) -> Vec<i32> {
+    let models = SampsonModels::new(models);
+    let means = MeanPreferences::new(points, subset, &models, tau);
+    let mut in_subset = vec![false; points.len()];
+    subset.indices.iter().for_each(|&i| in_subset[i] = true);
+    (0..points.len())
+        .into_par_iter()
+        .map_init(
+            || (vec![0.0; models.len()], vec![0.0; means.classes]),
+            |(row, dots), i| {
+                if in_subset[i] {
+                    return -1;
+                }
+                preference_row(&models, points, i, tau, row);
+                match means.nearest(row, dots) {
+                    Some(c) if c < subset.clusters => c as i32,
+                    _ => -1,
+                }
+            },
+        )
+        .collect()
+}
+
+/// For each cluster of the subset, the hypothesis with the most inliers
+/// among its matches (None when none has one). Hypotheses are scored in
+/// parallel; the choice does not depend on the thread count.
+fn best_models(
+    points: &Correspondences,
+    subset: ClusteredSubset,
+    models: &[Matrix3<f64>],
+    thr2: f64,
+) -> Vec<Option<usize>> {
+    let clusters = subset.clusters;
+    let Ok(sub) = points.subset(subset.indices) else {
+        return vec![None; clusters];
+    };
+    let members = members(subset.labels, clusters);
+    let counts: Vec<Vec<usize>> = models
+        .par_iter()
+        .map_init(
+            || vec![0.0; sub.len()],
+            |residuals, f| {
+                sampson_distances_squared(f, &sub, residuals);
+                members
+                    .iter()
+                    .map(|m| m.iter().filter(|&&k| residuals[k] <= thr2).count())
+                    .collect()
+            },
+        )
+        .collect();
+    (0..clusters)
+        .map(|c| {
+            let mut best = (0, None);
+            for (h, count) in counts.iter().enumerate() {
+                if count[c] > best.0 {
+                    best = (count[c], Some(h));
+                }
+            }
+            best.1
+        })
+        .collect()
+}
+
+/// The squared Sampson distance (Eq. 23) of match `i` to `f` (infinite for
+/// a zero `f`, which explains nothing).
+fn sampson_distance_squared(f: &Matrix3<f64>, points: &Correspondences, i: usize) -> f64 {
+    if f.iter().all(|&v| v == 0.0) {
+        return f64::INFINITY;
+    }
+    let mut out = [0.0];
+    SampsonModels::new(std::slice::from_ref(f)).distances_squared(
+        points.point1(i),
+        points.point2(i),
+        &mut out,
+    );
+    out[0]
+}
+
+/// For each match, the model (by position) of smallest squared Sampson
+/// distance when `≤ thr2`, the first on ties; −1 otherwise. A zero model
+/// explains nothing.
+fn nearest_within(points: &Correspondences, models: &[Matrix3<f64>], thr2: f64) -> Vec<i32> {
+    let n = points.len();
+    let mut best = vec![(-1_i32, f64::INFINITY); n];
+    let mut residuals = vec![0.0; n];
+    for (label, f) in models.iter().enumerate() {
+        if f.iter().all(|&v| v == 0.0) {
+            continue;
+        }
+        sampson_distances_squared(f, points, &mut residuals);
+        for (b, &r) in best.iter_mut().zip(&residuals) {
+            if r <= thr2 && r < b.1 {
+                *b = (label as i32, r);
+            }
+        }
+    }
+    best.into_iter().map(|(label, _)| label).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn subsets_are_distinct_sorted_and_seeded() {
+        let a = subset_indices(7, 3000, 500);
+        assert_eq!(a, subset_indices(7, 3000, 500));
+        assert_ne!(a, subset_indices(8, 3000, 500));
+        assert!(a.windows(2).all(|w| w[0] < w[1]));
+        assert_eq!(subset_indices(7, 300, 0), (0..300).collect::<Vec<_>>());
+    }
+
+    /// `[d]×`: the F of the pure image translation `x2 = x1 + d`.
+    fn translation(d: [f64; 2]) -> Matrix3<f64> {
+        Matrix3::new(0.0, 0.0, d[1], 0.0, 0.0, -d[0], -d[1], d[0], 0.0)
+    }
+
+    /// `n` matches spread over a 100 × 100 square, match `i` moved by
+    /// `shift(i)`.
+    fn shifted_matches(n: usize, shift: impl Fn(usize) -> [f64; 2]) -> Correspondences {
+        let p1: Vec<[f64; 2]> = (0..n)
+            .map(|i| [(i * 37 % 101) as f64 - 50.0, (i * 53 % 97) as f64 - 48.0])
+            .collect();
+        let p2: Vec<[f64; 2]> = (0..n)
+            .map(|i| [p1[i][0] + shift(i)[0], p1[i][1] + shift(i)[1]])
+            .collect();
+        Correspondences::new(&p1, &p2).unwrap()
+    }
+
+    /// Two motions, `x2 = x1 + (1, 0)` on matches 0..20 and `x2 = x1 +
+    /// (0, 1)` on 20..40, and two gross outliers 40, 41 that move by
+    /// (3, 5).
+    fn two_translations() -> Correspondences {
+        shifted_matches(42, |i| match i {
+            0..20 => [1.0, 0.0],
+            20..40 => [0.0, 1.0],
+            _ => [3.0, 5.0],
+        })
+    }
+
+    #[test]
+    fn the_left_out_matches_join_the_cluster_that_explains_them() {
+        let points = two_translations();
+        // The subset: every fourth match and outlier 40, labelled by
+        // motion; match 0 an outlier of the clustering.
+        let indices: Vec<usize> = (0..40).step_by(4).chain([40]).collect();
+        let labels: Vec<i32> = indices
+            .iter()
+            .map(|&i| match i {
+                1..20 => 0,
+                20..40 => 1,
+                _ => -1,
+            })
+            .collect();
+        let subset = ClusteredSubset {
+            indices: &indices,
+            labels: &labels,
+            clusters: 2,
+        };
+        let expected: Vec<i32> = (0..42)
+            .map(|i| match i {
+                1..20 => 0,
+                20..40 => 1,
+                _ => -1,
+            })
+            .collect();
+        // A model that explains nothing, the two motions' models and the
+        // outliers' own: outlier 41 prefers what the subset's outliers
+        // prefer (Preference) and no cluster's model explains it (Model).
+        let noise = Matrix3::new(0.0, 0.0, 1.0, 0.0, 0.0, 1.0, -1.0, -1.0, 0.0);
+        let models = [
+            noise,
+            translation([0.0, 1.0]),
+            translation([1.0, 0.0]),
+            translation([3.0, 5.0]),
+        ];
+        for how in [
+            SubsetExtension::Preference,
+            SubsetExtension::Model,
+            SubsetExtension::PreferenceExplained,
+        ] {
+            let out = extend_labels(&points, subset, &models, 1e-9, how);
+            assert_eq!(out, expected, "{how:?}");
+        }
+        // Without the second motion's model its left-out matches prefer
+        // nothing (Preference) or have no model (Model): outliers.
+        for how in [
+            SubsetExtension::Preference,
+            SubsetExtension::Model,
+            SubsetExtension::PreferenceExplained,
+        ] {
+            let out = extend_labels(&points, subset, &models[2..], 1e-9, how);
+            for (i, &l) in out.iter().enumerate() {
+                let left_out_of_b = (20..40).contains(&i) && !indices.contains(&i);
+                let want = if left_out_of_b { -1 } else { expected[i] };
+                assert_eq!(l, want, "{how:?}, match {i}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_match_its_cluster_prefers_but_does_not_explain_is_vetoed() {
+        // Motions x2 = x1 + (10, 0) (matches 0..20) and x2 = x1 + (0, 10)
+        // (20..40); match 40 moves by (10, 2): 2 px² (squared Sampson) off
+        // the first motion's model, within its preference cutoff 5 tau but
+        // above tau = 1, and 50 px² off the second's.
+        let points = shifted_matches(41, |i| match i {
+            0..20 => [10.0, 0.0],
+            20..40 => [0.0, 10.0],
+            _ => [10.0, 2.0],
+        });
+        let indices: Vec<usize> = (0..40).step_by(4).collect();
+        let labels: Vec<i32> = indices.iter().map(|&i| i32::from(i >= 20)).collect();
+        let subset = ClusteredSubset {
+            indices: &indices,
+            labels: &labels,
+            clusters: 2,
+        };
+        let models = [translation([10.0, 0.0]), translation([0.0, 10.0])];
+        let label_of_40 = |how| extend_labels(&points, subset, &models, 1.0, how)[40];
+        assert_eq!(label_of_40(SubsetExtension::Preference), 0);
+        assert_eq!(label_of_40(SubsetExtension::PreferenceExplained), -1);
+        assert_eq!(label_of_40(SubsetExtension::Model), -1);
+    }
+}
