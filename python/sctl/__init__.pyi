@@ -121,6 +121,8 @@ def segment(
     size_rule: Union[Literal["min-size", "largest-gap"], Dict[str, float]] = "min-size",
     final_assignment: Literal["merge", "none", "refit"] = "merge",
     duplicate_filter: Literal["none", "same-inliers"] = "none",
+    cluster_subset: int = 0,
+    subset_extension: Literal["preference-explained", "preference", "model"] = "preference-explained",
     max_memory_mb: int = 0,
 ) -> Segmentation:
     """Segments matches into rigid motions (T-Linkage of five-point

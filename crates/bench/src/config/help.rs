@@ -72,6 +72,11 @@ EXPERIMENT FILE (TOML)
                                hypothesis explains 80 % of its matches)
   duplicate_filter = \"none\"   none | same-inliers (one hypothesis per distinct
                                inlier set enters the preferences)
+  cluster_subset = 0           > 0: steps 1-9 on this many random matches, the others
+                               then join the nearest cluster
+  subset_extension = \"preference-explained\"   how: preference-explained (nearest mean
+                               preference vector, within thr_px of its cluster's model)
+                               | preference | model (nearest cluster model)
   max_memory_mb = 0            > 0: refuse (at once) a scene whose clustering
                                would need more memory (MB); 0: no bound
   seed = 12345                 sampling seed
