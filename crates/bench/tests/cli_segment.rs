@@ -430,3 +430,30 @@ fn profile_sets_every_key_the_config_does_not_give() {
     assert_ne!(flagged, from_file);
     assert_eq!(flagged, segment(&[flag, fast_300.as_os_str()]));
 }
+
+#[test]
+fn the_summary_says_how_many_matches_were_clustered() {
+    let dir = tempfile::tempdir().unwrap();
+    let matches = dir.path().join("pair.csv");
+    let n = write_matches(&matches).len();
+    assert!(n > 100, "{n}");
+    let config = dir.path().join("subset.toml");
+    std::fs::write(
+        &config,
+        "[pipeline]\nnum_samples = 300\ncluster_subset = 100\nsubset_extension = \"preference-explained\"\n",
+    )
+    .unwrap();
+    let output = segment_1024x768(&matches)
+        .arg("--config")
+        .arg(&config)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert!(output.status.success(), "{stderr}");
+    let line = format!(
+        "clustered 100 matches drawn at random; the other {} joined by preference-explained (cluster_subset)",
+        n - 100
+    );
+    assert!(stderr.contains(&line), "{stderr}");
+    assert_eq!(String::from_utf8(output.stdout).unwrap().lines().count(), n);
+}

@@ -192,7 +192,9 @@ fn summary_text(
             summary,
             "\n  clustered {clustered} matches drawn at random; the other {} joined by {} (cluster_subset)",
             scene.len() - clustered,
-            format!("{:?}", params.subset_extension).to_lowercase(),
+            crate::sweep::format_value(
+                &toml::Value::try_from(params.subset_extension).expect("a switch serializes")
+            ),
         );
     }
     for c in &segmentation.clusters {
