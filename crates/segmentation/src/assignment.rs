@@ -60,7 +60,11 @@ fn refit_clusters(
 
 /// The model (by position) of smallest squared Sampson distance for each
 /// match when `≤ thr2`, the first on ties; −1 otherwise.
-fn nearest_model(points: &Correspondences, models: &[Option<Matrix3<f64>>], thr2: f64) -> Vec<i32> {
+pub(crate) fn nearest_model(
+    points: &Correspondences,
+    models: &[Option<Matrix3<f64>>],
+    thr2: f64,
+) -> Vec<i32> {
     let n = points.len();
     let mut best = vec![(-1_i32, f64::INFINITY); n];
     let mut residuals = vec![0.0; n];

@@ -120,7 +120,11 @@ pub fn merge_explained(labels: &[i32], clusters: usize, inliers: &InlierBits) ->
 
 /// For each cluster, the hypothesis with the most inliers among its
 /// matches (None when no hypothesis has one).
-fn best_hypotheses(labels: &[i32], clusters: usize, inliers: &InlierBits) -> Vec<Option<usize>> {
+pub(crate) fn best_hypotheses(
+    labels: &[i32],
+    clusters: usize,
+    inliers: &InlierBits,
+) -> Vec<Option<usize>> {
     let mut best: Vec<(usize, Option<usize>)> = vec![(0, None); clusters];
     let mut counts = vec![0usize; clusters];
     for h in 0..inliers.len() {

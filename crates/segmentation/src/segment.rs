@@ -8,7 +8,7 @@ use crate::{
     merge_explained, reassign, ClusterModel, ClusteredSubset, DuplicateFilter, FinalAssignment,
     FocalVerdict, GeneratedHypotheses, Hypothesis, HypothesisCounts, HypothesisFocals,
     HypothesisStatus, InlierBits, Matches, Method, MinimalSolutions, MinimalSolver, Params,
-    Segmentation, SegmentationError, StageTimings,
+    Segmentation, SegmentationError, StageTimings, SubsetExtension,
 };
 use clustering::{ClusteringParams, Preferences};
 use geometry::{eight_point_normalized, sampson_distances_squared, Correspondences, SampsonModels};
@@ -219,7 +219,12 @@ fn cluster_kept(
     let clustering_params = clustering_params(params);
     // Step 7: preferences, one point (row) at a time.
     let t = Instant::now();
-    let step7 = build_preferences(segmentation, generated, kept, params)?;
+    let subset_active = generated.subset.len() < matches.len();
+    // The inlier sets of the entering hypotheses: the merge's models, and
+    // the cluster models that the subset's extension may test against.
+    let keep_inliers = params.final_assignment == FinalAssignment::Merge
+        || (subset_active && params.subset_extension != SubsetExtension::Preference);
+    let step7 = build_preferences(segmentation, generated, kept, params, keep_inliers)?;
     segmentation.timings.preferences = t.elapsed().as_secs_f64();
 
     // Steps 8–9: linkage and size filter.
@@ -242,7 +247,7 @@ fn cluster_kept(
             &step7.inliers,
         )),
     };
-    let (labels, all_points) = if generated.subset.len() < matches.len() {
+    let (labels, all_points) = if subset_active {
         let all = centred_points(matches, params)?;
         let subset = ClusteredSubset {
             indices: &generated.subset,
@@ -250,7 +255,8 @@ fn cluster_kept(
             clusters,
         };
         let tau = params.thr_px * params.thr_px;
-        let labels = extend_labels(&all, subset, &step7.models, tau, params.subset_extension);
+        let how = params.subset_extension;
+        let labels = extend_labels(&all, subset, &step7.models, &step7.inliers, tau, how);
         (labels, Cow::Owned(all))
     } else {
         (labels, Cow::Borrowed(points))
@@ -262,9 +268,9 @@ fn cluster_kept(
     Ok(())
 }
 
-/// What step 7 gives steps 8–9: the preferences, the inlier sets the
-/// merge needs (empty otherwise) and the models that entered the
-/// preferences, in order.
+/// What step 7 gives steps 8–9: the preferences, the inlier sets of the
+/// entering hypotheses when `keep_inliers` (empty otherwise) and the
+/// models that entered the preferences, in order.
 struct PreferenceStage {
     preferences: Preferences,
     inliers: InlierBits,
@@ -274,21 +280,22 @@ struct PreferenceStage {
 /// Step 7 on the kept hypotheses (Eq. 38, or J-Linkage's `r ≤ τ`): the
 /// preference matrix, built one point at a time in parallel
 /// ([`clustering::Preferences::from_residual_rows`], each row stored at
-/// exactly its size), with `τ = thr_px²`. When the duplicate filter or the
-/// merge needs them, each hypothesis's inlier set (`r ≤ τ`) comes first,
-/// one hypothesis at a time: a duplicate ([`DuplicateFilter::SameInliers`])
-/// is marked and left out of the matrix, and the merge's sets are returned
-/// (empty otherwise).
+/// exactly its size), with `τ = thr_px²`. When the duplicate filter needs
+/// them or `keep_inliers` (the merge's and the subset extension's cluster
+/// models), each hypothesis's inlier set (`r ≤ τ`) comes first, one
+/// hypothesis at a time: a duplicate ([`DuplicateFilter::SameInliers`]) is
+/// marked and left out of the matrix, and the sets are returned when
+/// `keep_inliers` (empty otherwise).
 fn build_preferences(
     segmentation: &mut Segmentation,
     generated: &GeneratedHypotheses,
     kept: &[usize],
     params: &Params,
+    keep_inliers: bool,
 ) -> Result<PreferenceStage, SegmentationError> {
     let points = &generated.points;
     let tau = params.thr_px * params.thr_px;
     let dedup = params.duplicate_filter == DuplicateFilter::SameInliers;
-    let merge = params.final_assignment == FinalAssignment::Merge;
     let mut residuals = vec![0.0; points.len()];
     let mut seen = HashSet::new();
     let mut inliers = InlierBits::new(points.len());
@@ -297,7 +304,7 @@ fn build_preferences(
         let Some(model) = generated.models[j].as_ref() else {
             continue;
         };
-        if dedup || merge {
+        if dedup || keep_inliers {
             sampson_distances_squared(model, points, &mut residuals);
             let words = inlier_words(&residuals, tau);
             if dedup && !seen.insert(words.clone()) {
@@ -305,7 +312,7 @@ fn build_preferences(
                 segmentation.counts.kept -= 1;
                 continue;
             }
-            if merge {
+            if keep_inliers {
                 inliers.push_words(words);
             }
         }

@@ -12,8 +12,9 @@
 //! the geometric test of Progressive-X's final assignment (Barath & Matas,
 //! ICCV 2019).
 
-use crate::assignment::{drop_small_and_renumber, members};
-use crate::{hypothesis_rng, SubsetExtension};
+use crate::assignment::{drop_small_and_renumber, nearest_model};
+use crate::merge::best_hypotheses;
+use crate::{hypothesis_rng, InlierBits, SubsetExtension};
 use clustering::preference;
 use geometry::{sampson_distances_squared, Correspondences, SampsonModels};
 use nalgebra::Matrix3;
@@ -55,8 +56,10 @@ pub struct ClusteredSubset<'a> {
 }
 
 /// The labels of all `points` (principal-point centred) from those of the
-/// clustered `subset`, given the `models` that entered the preferences and
-/// `tau = thr_px²`. A match of the subset keeps its label; any other match
+/// clustered `subset`, given the `models` that entered the preferences,
+/// their `inliers` among the subset's matches (`r ≤ tau`, in the order of
+/// `models`, as step 7 computes them for the merge; `Preference` does not
+/// read them) and `tau = thr_px²`. A match of the subset keeps its label; any other match
 /// joins a cluster by `how`:
 ///
 /// * [`SubsetExtension::Preference`]: its preference vector `p` (Eq. 38)
@@ -66,9 +69,10 @@ pub struct ClusteredSubset<'a> {
 ///   the lower label on ties, the outliers last), and is an outlier when
 ///   that class is the outliers' or it prefers no model;
 /// * [`SubsetExtension::Model`]: each cluster's model is the hypothesis
-///   with the most inliers (`r ≤ tau`, Eq. 23) among its matches, and the
-///   match goes to the model of smallest squared Sampson distance when it
-///   is `≤ tau`, else it is an outlier;
+///   with the most inliers among its matches (the model of
+///   [`crate::merge_explained`]), and the match goes to the model of
+///   smallest squared Sampson distance (Eq. 23) when it is `≤ tau`, else
+///   it is an outlier;
 /// * [`SubsetExtension::PreferenceExplained`]: as `Preference`, and the
 ///   match is an outlier unless the joined cluster's model (as for
 ///   `Model`) explains it (`≤ tau`).
@@ -79,35 +83,52 @@ pub fn extend_labels(
     points: &Correspondences,
     subset: ClusteredSubset,
     models: &[Matrix3<f64>],
+    inliers: &InlierBits,
     tau: f64,
     how: SubsetExtension,
 ) -> Vec<i32> {
-    let cluster_models = || -> Vec<Matrix3<f64>> {
-        best_models(points, subset, models, tau)
+    let cluster_models = || -> Vec<Option<Matrix3<f64>>> {
+        best_hypotheses(subset.labels, subset.clusters, inliers)
             .into_iter()
-            .map(|h| h.map_or(Matrix3::zeros(), |h| models[h]))
+            .map(|h| h.and_then(|h| models.get(h).copied()))
             .collect()
     };
     let mut labels = match how {
         SubsetExtension::Preference => nearest_mean_preference(points, subset, models, tau),
-        SubsetExtension::Model => nearest_within(points, &cluster_models(), tau),
+        SubsetExtension::Model => nearest_model(points, &cluster_models(), tau),
         SubsetExtension::PreferenceExplained => {
-            let mut labels = nearest_mean_preference(points, subset, models, tau);
-            let cluster_models = cluster_models();
-            for (i, label) in labels.iter_mut().enumerate() {
-                if let Ok(c) = usize::try_from(*label) {
-                    if sampson_distance_squared(&cluster_models[c], points, i) > tau {
-                        *label = -1;
-                    }
-                }
-            }
-            labels
+            let labels = nearest_mean_preference(points, subset, models, tau);
+            unexplained_to_outliers(points, labels, &cluster_models(), tau)
         }
     };
     for (&i, &label) in subset.indices.iter().zip(subset.labels) {
         labels[i] = label;
     }
     drop_small_and_renumber(&labels, subset.clusters, 0)
+}
+
+/// `labels` with every match whose cluster's model does not explain it
+/// (squared Sampson distance, Eq. 23, `> tau`, or no model) made an
+/// outlier.
+fn unexplained_to_outliers(
+    points: &Correspondences,
+    mut labels: Vec<i32>,
+    cluster_models: &[Option<Matrix3<f64>>],
+    tau: f64,
+) -> Vec<i32> {
+    let mut residuals = vec![0.0; points.len()];
+    for (c, model) in cluster_models.iter().enumerate() {
+        match model {
+            Some(f) => sampson_distances_squared(f, points, &mut residuals),
+            None => residuals.fill(f64::INFINITY),
+        }
+        for (label, &r) in labels.iter_mut().zip(&residuals) {
+            if *label == c as i32 && r > tau {
+                *label = -1;
+            }
+        }
+    }
+    labels
 }
 
 /// The preference vector (Eq. 38) of match `i` against `models`, into `out`.
@@ -243,82 +264,6 @@ fn nearest_mean_preference(
         .collect()
 }
 
-/// For each cluster of the subset, the hypothesis with the most inliers
-/// among its matches (None when none has one). Hypotheses are scored in
-/// parallel; the choice does not depend on the thread count.
-fn best_models(
-    points: &Correspondences,
-    subset: ClusteredSubset,
-    models: &[Matrix3<f64>],
-    thr2: f64,
-) -> Vec<Option<usize>> {
-    let clusters = subset.clusters;
-    let Ok(sub) = points.subset(subset.indices) else {
-        return vec![None; clusters];
-    };
-    let members = members(subset.labels, clusters);
-    let counts: Vec<Vec<usize>> = models
-        .par_iter()
-        .map_init(
-            || vec![0.0; sub.len()],
-            |residuals, f| {
-                sampson_distances_squared(f, &sub, residuals);
-                members
-                    .iter()
-                    .map(|m| m.iter().filter(|&&k| residuals[k] <= thr2).count())
-                    .collect()
-            },
-        )
-        .collect();
-    (0..clusters)
-        .map(|c| {
-            let mut best = (0, None);
-            for (h, count) in counts.iter().enumerate() {
-                if count[c] > best.0 {
-                    best = (count[c], Some(h));
-                }
-            }
-            best.1
-        })
-        .collect()
-}
-
-/// The squared Sampson distance (Eq. 23) of match `i` to `f` (infinite for
-/// a zero `f`, which explains nothing).
-fn sampson_distance_squared(f: &Matrix3<f64>, points: &Correspondences, i: usize) -> f64 {
-    if f.iter().all(|&v| v == 0.0) {
-        return f64::INFINITY;
-    }
-    let mut out = [0.0];
-    SampsonModels::new(std::slice::from_ref(f)).distances_squared(
-        points.point1(i),
-        points.point2(i),
-        &mut out,
-    );
-    out[0]
-}
-
-/// For each match, the model (by position) of smallest squared Sampson
-/// distance when `≤ thr2`, the first on ties; −1 otherwise. A zero model
-/// explains nothing.
-fn nearest_within(points: &Correspondences, models: &[Matrix3<f64>], thr2: f64) -> Vec<i32> {
-    let n = points.len();
-    let mut best = vec![(-1_i32, f64::INFINITY); n];
-    let mut residuals = vec![0.0; n];
-    for (label, f) in models.iter().enumerate() {
-        if f.iter().all(|&v| v == 0.0) {
-            continue;
-        }
-        sampson_distances_squared(f, points, &mut residuals);
-        for (b, &r) in best.iter_mut().zip(&residuals) {
-            if r <= thr2 && r < b.1 {
-                *b = (label as i32, r);
-            }
-        }
-    }
-    best.into_iter().map(|(label, _)| label).collect()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -335,6 +280,24 @@ mod tests {
     /// `[d]×`: the F of the pure image translation `x2 = x1 + d`.
     fn translation(d: [f64; 2]) -> Matrix3<f64> {
         Matrix3::new(0.0, 0.0, d[1], 0.0, 0.0, -d[0], -d[1], d[0], 0.0)
+    }
+
+    /// The inlier sets (`r ≤ tau`) of `models` among the subset's matches,
+    /// as step 7 gives them to [`extend_labels`].
+    fn inliers(
+        points: &Correspondences,
+        indices: &[usize],
+        models: &[Matrix3<f64>],
+        tau: f64,
+    ) -> InlierBits {
+        let sub = points.subset(indices).unwrap();
+        let mut bits = InlierBits::new(sub.len());
+        let mut residuals = vec![0.0; sub.len()];
+        for f in models {
+            sampson_distances_squared(f, &sub, &mut residuals);
+            bits.push(&residuals, tau);
+        }
+        bits
     }
 
     /// `n` matches spread over a 100 × 100 square, match `i` moved by
@@ -401,7 +364,8 @@ mod tests {
             SubsetExtension::Model,
             SubsetExtension::PreferenceExplained,
         ] {
-            let out = extend_labels(&points, subset, &models, 1e-9, how);
+            let bits = inliers(&points, &indices, &models, 1e-9);
+            let out = extend_labels(&points, subset, &models, &bits, 1e-9, how);
             assert_eq!(out, expected, "{how:?}");
         }
         // Without the second motion's model its left-out matches prefer
@@ -411,7 +375,8 @@ mod tests {
             SubsetExtension::Model,
             SubsetExtension::PreferenceExplained,
         ] {
-            let out = extend_labels(&points, subset, &models[2..], 1e-9, how);
+            let bits = inliers(&points, &indices, &models[2..], 1e-9);
+            let out = extend_labels(&points, subset, &models[2..], &bits, 1e-9, how);
             for (i, &l) in out.iter().enumerate() {
                 let left_out_of_b = (20..40).contains(&i) && !indices.contains(&i);
                 let want = if left_out_of_b { -1 } else { expected[i] };
@@ -439,7 +404,8 @@ mod tests {
             clusters: 2,
         };
         let models = [translation([10.0, 0.0]), translation([0.0, 10.0])];
-        let label_of_40 = |how| extend_labels(&points, subset, &models, 1.0, how)[40];
+        let bits = inliers(&points, &indices, &models, 1.0);
+        let label_of_40 = |how| extend_labels(&points, subset, &models, &bits, 1.0, how)[40];
         assert_eq!(label_of_40(SubsetExtension::Preference), 0);
         assert_eq!(label_of_40(SubsetExtension::PreferenceExplained), -1);
         assert_eq!(label_of_40(SubsetExtension::Model), -1);
