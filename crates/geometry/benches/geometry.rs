@@ -1,6 +1,7 @@
 //! Criterion benchmarks of the geometry hot paths:
 //! * the Sampson batch over N = 2000 matches (preference matrix, Eq. 38),
-//!   reported as point-evaluations per second;
+//!   reported as point-evaluations per second, and the consensus set of
+//!   one F at N = 300 (step 2's choice among a minimal sample's solutions);
 //! * IRLS-Tukey refinement from an 8-point sample at N = 300 (step 3), the
 //!   text's variant and the reference code's (plain refit, polish);
 //! * the three 8-point variants on a minimal sample (step 2);
@@ -15,8 +16,8 @@ mod common;
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use geometry::{
     eight_point_normalized, eight_point_plain, eight_point_weighted, five_point, refine_irls_tukey,
-    sampson_distances_squared, sampson_residuals_signed, seven_point, six_point_focal,
-    Correspondences, IrlsParams, IrlsWorkspace,
+    sampson_consensus, sampson_distances_squared, sampson_residuals_signed, seven_point,
+    six_point_focal, Correspondences, IrlsParams, IrlsWorkspace,
 };
 use nalgebra::Vector3;
 use rand::SeedableRng;
@@ -49,6 +50,21 @@ fn sampson_batch(c: &mut Criterion) {
     });
     group.bench_function(BenchmarkId::new("signed", n), |b| {
         b.iter(|| sampson_residuals_signed(black_box(&f), black_box(&scene.points), &mut out))
+    });
+    group.finish();
+
+    // The consensus set of a minimal sample's solution (step 2), N = 300,
+    // in full and against a bound it cannot reach.
+    let mut group = c.benchmark_group("sampson_consensus");
+    let (points, _) = two_motion_scene(2);
+    let f = eight_point_normalized(&points.subset(&(0..8).collect::<Vec<_>>()).unwrap()).unwrap();
+    let mut inliers = Vec::new();
+    group.throughput(Throughput::Elements(points.len() as u64));
+    group.bench_function("full_300", |b| {
+        b.iter(|| sampson_consensus(black_box(&f), black_box(&points), 6.25, 0, &mut inliers))
+    });
+    group.bench_function("give_up_300", |b| {
+        b.iter(|| sampson_consensus(black_box(&f), black_box(&points), 6.25, 250, &mut inliers))
     });
     group.finish();
 }

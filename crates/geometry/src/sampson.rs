@@ -251,9 +251,10 @@ impl SampsonModels {
 /// increasing, written into `out` (cleared first). The consensus set of
 /// RANSAC-style hypothesis scoring.
 ///
-/// Gives up as soon as fewer than `at_least` correspondences can still be
-/// within the bound, returning `false` (`out` then holds a partial set);
-/// `at_least = 0` never gives up.
+/// Gives up, returning `false`, once fewer than `at_least` correspondences
+/// can still be within the bound (tested every [`CONSENSUS_BLOCK`] matches;
+/// `out` then holds a partial set); `at_least = 0` never gives up. The
+/// answer and, when it is `true`, `out` do not depend on where it gave up.
 ///
 /// ```
 /// use geometry::{sampson_consensus, Correspondences};
@@ -274,18 +275,28 @@ pub fn sampson_consensus(
 ) -> bool {
     out.clear();
     let f = rescale_power_of_two(f);
+    let (x1, y1, x2, y2) = points.columns();
     let n = points.len();
-    for i in 0..n {
-        if out.len() + (n - i) < at_least {
+    let mut d2 = [0.0; CONSENSUS_BLOCK];
+    for start in (0..n).step_by(CONSENSUS_BLOCK) {
+        if out.len() + (n - start) < at_least {
             return false;
         }
-        let (e, g1, g2) = epipolar_terms(&f, points.point1(i), points.point2(i));
-        if ratio(e, e * e, g1 + g2) <= thr2 {
-            out.push(i);
+        let end = (start + CONSENSUS_BLOCK).min(n);
+        // Distances of the block (a branch-free loop that vectorises),
+        // then the indices within the bound.
+        for (k, d) in (start..end).zip(d2.iter_mut()) {
+            let (e, g1, g2) = epipolar_terms(&f, [x1[k], y1[k]], [x2[k], y2[k]]);
+            *d = ratio(e, e * e, g1 + g2);
         }
+        out.extend((start..end).filter(|&k| d2[k - start] <= thr2));
     }
     out.len() >= at_least
 }
+
+/// Matches per block of [`sampson_consensus`]: distances are computed a
+/// block at a time, and the give-up test runs between blocks.
+const CONSENSUS_BLOCK: usize = 32;
 
 /// Signed Sampson residuals `r_i = e_i / sqrt(a_i² + b_i² + c_i² + d_i²)`
 /// (square root of Eq. 23, with the sign of `e_i`) of every correspondence to
