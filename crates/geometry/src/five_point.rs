@@ -85,36 +85,117 @@ pub fn five_point(
     x1: &[Vector3<f64>],
     x2: &[Vector3<f64>],
 ) -> Result<Vec<Matrix3<f64>>, GeometryError> {
-    if x1.len() != x2.len() {
-        return Err(GeometryError::LengthMismatch {
-            points1: x1.len(),
-            points2: x2.len(),
-        });
-    }
-    check_sample_size(x1.len(), FIVE_POINT_SAMPLE)?;
-    let q1 = unit_bearings(x1, 1)?;
-    let q2 = unit_bearings(x2, 2)?;
-    let rows: [[f64; 9]; FIVE_POINT_SAMPLE] =
-        std::array::from_fn(|i| epipolar_row(q1[i].into(), q2[i].into()));
-    let basis = null_basis::<4>(&rows)?.map(|v| matrix_from_row_major(&v));
-    let system = EssentialSystem::new(&basis);
-    let hidden = hidden_variable_matrix(&system.coefficients)?;
-    let roots = sturm_roots(&determinant(&hidden)).ok_or(GeometryError::Degenerate(
-        "5-point: the degree-10 polynomial is not finite or vanishes",
-    ))?;
-    let [bx, by, bz, bw] = basis;
-    let mut solutions = Vec::with_capacity(roots.as_slice().len());
-    for &z in roots.as_slice() {
-        let Some((x, y)) = back_substitute(&hidden, z) else {
-            continue;
-        };
-        let ([x, y, z], _) = polish_root(&system, [x, y, z], POLISH_STEPS);
-        let e = finish(bx * x + by * y + bz * z + bw)?;
+    let roots = FivePointRoots::new(x1, x2)?;
+    let mut solutions = Vec::with_capacity(roots.len());
+    for k in 0..roots.len() {
+        let e = roots.polished(k)?;
         if !is_duplicate(solutions.iter(), &e) {
             solutions.push(e);
         }
     }
     Ok(solutions)
+}
+
+/// The real roots of the 5-point system before their Gauss–Newton polish:
+/// each root's essential matrix to a few 1e-6 (relative), enough to score
+/// it against pixel thresholds, and the polish of any one of them on
+/// demand. [`five_point`] is every root polished, duplicates dropped; a
+/// RANSAC-style caller that keeps only the best-scoring solution of a
+/// sample polishes that one alone ([`FivePointRoots::polished`] of it
+/// equals the matching entry of [`five_point`] bit for bit).
+///
+/// ```
+/// use geometry::{five_point, FivePointRoots};
+/// use nalgebra::{Rotation3, Vector3};
+/// let r = Rotation3::from_euler_angles(0.1, -0.2, 0.05);
+/// let t = Vector3::new(1.0, 0.1, -0.2);
+/// let world = [[0.1, 0.2, 4.0], [-1.0, 0.5, 5.0], [0.7, -0.8, 6.0], [-0.3, -0.4, 3.0], [1.2, 0.9, 7.0]];
+/// let q1: Vec<Vector3<f64>> = world.iter().map(|p| Vector3::from(*p)).collect();
+/// let q2: Vec<Vector3<f64>> = q1.iter().map(|p| r * p + t).collect();
+/// let roots = FivePointRoots::new(&q1, &q2).unwrap();
+/// let polished = five_point(&q1, &q2).unwrap();
+/// assert_eq!(roots.polished(0).unwrap(), polished[0]);
+/// assert!((roots.essentials()[0] - polished[0]).norm() < 1e-6);
+/// ```
+#[derive(Debug, Clone)]
+pub struct FivePointRoots {
+    /// The null-space basis `[X, Y, Z, W]` of the five epipolar equations.
+    basis: [Matrix3<f64>; 4],
+    /// The ten cubic constraints over that basis (what the polish solves).
+    system: EssentialSystem,
+    /// `(x, y, z)` of each real root, as the Sturm sequence and the back
+    /// substitution give it.
+    roots: Vec<[f64; 3]>,
+    /// `E = x X + y Y + z Z + W` of each root, unit norm, canonical sign.
+    essentials: Vec<Matrix3<f64>>,
+}
+
+impl FivePointRoots {
+    /// The roots of five matches of calibrated bearings; inputs and errors
+    /// as [`five_point`].
+    pub fn new(x1: &[Vector3<f64>], x2: &[Vector3<f64>]) -> Result<Self, GeometryError> {
+        if x1.len() != x2.len() {
+            return Err(GeometryError::LengthMismatch {
+                points1: x1.len(),
+                points2: x2.len(),
+            });
+        }
+        check_sample_size(x1.len(), FIVE_POINT_SAMPLE)?;
+        let q1 = unit_bearings(x1, 1)?;
+        let q2 = unit_bearings(x2, 2)?;
+        let rows: [[f64; 9]; FIVE_POINT_SAMPLE] =
+            std::array::from_fn(|i| epipolar_row(q1[i].into(), q2[i].into()));
+        let basis = null_basis::<4>(&rows)?.map(|v| matrix_from_row_major(&v));
+        let system = EssentialSystem::new(&basis);
+        let hidden = hidden_variable_matrix(&system.coefficients)?;
+        let zs = sturm_roots(&determinant(&hidden)).ok_or(GeometryError::Degenerate(
+            "5-point: the degree-10 polynomial is not finite or vanishes",
+        ))?;
+        let mut found = Self {
+            basis,
+            system,
+            roots: Vec::with_capacity(zs.as_slice().len()),
+            essentials: Vec::with_capacity(zs.as_slice().len()),
+        };
+        for &z in zs.as_slice() {
+            let Some((x, y)) = back_substitute(&hidden, z) else {
+                continue;
+            };
+            found.roots.push([x, y, z]);
+            found.essentials.push(found.essential([x, y, z])?);
+        }
+        Ok(found)
+    }
+
+    /// Number of roots.
+    pub fn len(&self) -> usize {
+        self.roots.len()
+    }
+
+    /// Whether the system has no real root.
+    pub fn is_empty(&self) -> bool {
+        self.roots.is_empty()
+    }
+
+    /// The unpolished essential matrix of each root (unit norm, canonical
+    /// sign), in root order.
+    pub fn essentials(&self) -> &[Matrix3<f64>] {
+        &self.essentials
+    }
+
+    /// Root `k` after [`POLISH_STEPS`] Gauss–Newton steps on the ten
+    /// constraints (a step kept only while it lowers their residual).
+    /// Panics if `k >= len()`.
+    pub fn polished(&self, k: usize) -> Result<Matrix3<f64>, GeometryError> {
+        let (root, _) = polish_root(&self.system, self.roots[k], POLISH_STEPS);
+        self.essential(root)
+    }
+
+    /// `x X + y Y + z Z + W`, unit norm and canonical sign.
+    fn essential(&self, [x, y, z]: [f64; 3]) -> Result<Matrix3<f64>, GeometryError> {
+        let [bx, by, bz, bw] = self.basis;
+        finish(bx * x + by * y + bz * z + bw)
+    }
 }
 
 /// The bearings scaled to unit length; errors name the image and index.

@@ -46,7 +46,7 @@ pub use eight_point::{
     enforce_rank2, MIN_POINTS, RANK_TOLERANCE,
 };
 pub use error::GeometryError;
-pub use five_point::{five_point, FIVE_POINT_SAMPLE};
+pub use five_point::{five_point, FivePointRoots, FIVE_POINT_SAMPLE};
 pub use irls::{
     median_absolute_deviation, median_in_place, refine_irls_tukey, tukey_weight, IrlsFit,
     IrlsParams, IrlsSummary, IrlsWorkspace, RefinedModel, MAD_TO_SIGMA,

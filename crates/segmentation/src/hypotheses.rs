@@ -2,7 +2,7 @@
 //! another minimal solver) and the IRLS-Tukey refinement of each.
 
 use crate::adaptive::{stop_after, SupportTracker};
-use crate::minimal::{candidates, choose};
+use crate::minimal::solve_and_choose;
 use crate::{
     subset_indices, EightPoint, Matches, MinimalSampler, MinimalSolver, Params, SegmentationError,
 };
@@ -183,11 +183,17 @@ fn solve_minimal_samples(
         .into_par_iter()
         .map(|j| {
             let sample = sampler.sample(params.seed, j, size);
-            let solutions = match points.subset(&sample) {
-                Ok(subset) => candidates(params.minimal_solver, &subset, focal),
+            let chosen = match points.subset(&sample) {
+                Ok(subset) => solve_and_choose(
+                    params.minimal_solver,
+                    params.minimal_solutions,
+                    &subset,
+                    points,
+                    focal,
+                    params.thr_px,
+                ),
                 Err(_) => Vec::new(),
             };
-            let chosen = choose(params.minimal_solutions, points, solutions, params.thr_px);
             if chosen.is_empty() {
                 return vec![None];
             }

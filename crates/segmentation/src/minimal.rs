@@ -3,7 +3,9 @@
 //! choice among them, and the matches refinement starts from.
 
 use crate::{MinimalSolutions, MinimalSolver};
-use geometry::{five_point, sampson_consensus, seven_point, six_point_focal, Correspondences};
+use geometry::{
+    five_point, sampson_consensus, seven_point, six_point_focal, Correspondences, FivePointRoots,
+};
 use nalgebra::{Matrix3, Vector3};
 
 /// The fundamental matrices (centred pixel coordinates) of one minimal
@@ -32,19 +34,78 @@ pub(crate) fn candidates(
 /// Five-point E from the bearings `K⁻¹ (x, y, 1)ᵀ` of the centred points,
 /// each converted to `F = K⁻ᵀ E K⁻¹` (Hartley & Zisserman Eq. 9.12).
 fn essential_candidates(subset: &Correspondences, focal: f64) -> Vec<Matrix3<f64>> {
-    let bearing = |p: [f64; 2]| Vector3::new(p[0] / focal, p[1] / focal, 1.0);
-    let q1: Vec<Vector3<f64>> = (0..subset.len())
-        .map(|i| bearing(subset.point1(i)))
-        .collect();
-    let q2: Vec<Vector3<f64>> = (0..subset.len())
-        .map(|i| bearing(subset.point2(i)))
-        .collect();
-    let k_inv = Matrix3::from_diagonal(&Vector3::new(1.0 / focal, 1.0 / focal, 1.0));
+    let (q1, q2) = bearings(subset, focal);
     five_point(&q1, &q2)
         .unwrap_or_default()
         .into_iter()
-        .map(|e| k_inv * e * k_inv)
+        .map(|e| essential_to_fundamental(&e, focal))
         .collect()
+}
+
+/// The bearings `K⁻¹ (x, y, 1)ᵀ` of a sample's centred points, image 1 and 2.
+fn bearings(subset: &Correspondences, focal: f64) -> (Vec<Vector3<f64>>, Vec<Vector3<f64>>) {
+    let bearing = |p: [f64; 2]| Vector3::new(p[0] / focal, p[1] / focal, 1.0);
+    (0..subset.len())
+        .map(|i| (bearing(subset.point1(i)), bearing(subset.point2(i))))
+        .unzip()
+}
+
+/// `F = K⁻ᵀ E K⁻¹` with `K = diag(f, f, 1)` (Hartley & Zisserman Eq. 9.12).
+fn essential_to_fundamental(e: &Matrix3<f64>, focal: f64) -> Matrix3<f64> {
+    let k_inv = Matrix3::from_diagonal(&Vector3::new(1.0 / focal, 1.0 / focal, 1.0));
+    k_inv * e * k_inv
+}
+
+/// One sample's hypotheses: its candidates under `solver`, chosen by
+/// `choice` ([`choose`]); with the five-point solver and
+/// [`MinimalSolutions::BestThenPolish`], scored before the root polish
+/// ([`best_then_polish`]).
+pub(crate) fn solve_and_choose(
+    solver: MinimalSolver,
+    choice: MinimalSolutions,
+    subset: &Correspondences,
+    points: &Correspondences,
+    focal: f64,
+    thr_px: f64,
+) -> Vec<Chosen> {
+    if solver == MinimalSolver::FivePoint && choice == MinimalSolutions::BestThenPolish {
+        return best_then_polish(subset, points, focal, thr_px);
+    }
+    choose(choice, points, candidates(solver, subset, focal), thr_px)
+}
+
+/// The five-point root whose unpolished F has the largest consensus (the
+/// first on ties), then polished alone and its consensus set recounted;
+/// empty when the sample has no root or the winner's polish fails.
+fn best_then_polish(
+    subset: &Correspondences,
+    points: &Correspondences,
+    focal: f64,
+    thr_px: f64,
+) -> Vec<Chosen> {
+    let (q1, q2) = bearings(subset, focal);
+    let Ok(roots) = FivePointRoots::new(&q1, &q2) else {
+        return Vec::new();
+    };
+    let unpolished = roots
+        .essentials()
+        .iter()
+        .map(|e| essential_to_fundamental(e, focal))
+        .enumerate()
+        .filter(|(_, f)| f.iter().all(|v| v.is_finite()));
+    let Some((winner, _)) = best_consensus(points, unpolished, thr_px * thr_px) else {
+        return Vec::new();
+    };
+    let Ok(e) = roots.polished(winner) else {
+        return Vec::new();
+    };
+    let f = essential_to_fundamental(&e, focal);
+    if !f.iter().all(|v| v.is_finite()) {
+        return Vec::new();
+    }
+    let mut consensus = Vec::new();
+    sampson_consensus(&f, points, thr_px * thr_px, 0, &mut consensus);
+    vec![Chosen { f, consensus }]
 }
 
 /// A chosen solution and its consensus set: the matches within `thr_px`
@@ -74,22 +135,39 @@ pub(crate) fn choose(
                 Chosen { f, consensus }
             })
             .collect(),
-        MinimalSolutions::Best => {
-            let mut best: Option<Chosen> = None;
-            let mut scratch = Vec::new();
-            for f in candidates {
-                let to_beat = best.as_ref().map_or(0, |b| b.consensus.len() + 1);
-                if sampson_consensus(&f, points, thr2, to_beat, &mut scratch) {
-                    let previous = best.replace(Chosen {
-                        f,
-                        consensus: std::mem::take(&mut scratch),
-                    });
-                    scratch = previous.map(|b| b.consensus).unwrap_or_default();
-                }
-            }
-            best.into_iter().collect()
+        MinimalSolutions::Best | MinimalSolutions::BestThenPolish => {
+            best_consensus(points, candidates.into_iter().enumerate(), thr2)
+                .map(|(_, chosen)| chosen)
+                .into_iter()
+                .collect()
         }
     }
+}
+
+/// The candidate `(key, F)` with the largest consensus within `thr2` px²,
+/// the first on ties, with its key and consensus set; `None` without
+/// candidates. A candidate is abandoned as soon as it can no longer beat
+/// the best so far.
+fn best_consensus<K>(
+    points: &Correspondences,
+    candidates: impl Iterator<Item = (K, Matrix3<f64>)>,
+    thr2: f64,
+) -> Option<(K, Chosen)> {
+    let mut best: Option<(K, Chosen)> = None;
+    let mut scratch = Vec::new();
+    for (key, f) in candidates {
+        let to_beat = best.as_ref().map_or(0, |(_, b)| b.consensus.len() + 1);
+        if sampson_consensus(&f, points, thr2, to_beat, &mut scratch) {
+            let chosen = Chosen {
+                f,
+                consensus: std::mem::take(&mut scratch),
+            };
+            if let Some((_, previous)) = best.replace((key, chosen)) {
+                scratch = previous.consensus;
+            }
+        }
+    }
+    best
 }
 
 #[cfg(test)]
@@ -173,6 +251,47 @@ mod tests {
         assert_eq!(chosen.len(), 1);
         assert_eq!(chosen[0].f, scaled, "ties keep the first");
         assert_eq!(chosen[0].consensus.len(), naive_support(&truth));
+    }
+
+    /// Scoring the unpolished roots picks the solution `best` picks, and
+    /// the winner's polish and consensus are `best`'s bit for bit: on
+    /// noise-free matches and on 60 samples of the same matches with up to
+    /// ±1 px of deterministic noise, at the focal prior and off it.
+    #[test]
+    fn best_then_polish_chooses_as_best_does() {
+        let (exact, _) = rigid_scene(900.0);
+        let noisy: Vec<([f64; 2], [f64; 2])> = (0..exact.len())
+            .map(|i| {
+                let (a, b) = (exact.point1(i), exact.point2(i));
+                let jitter = ((i * 37 % 11) as f64 - 5.0) / 5.0;
+                (a, [b[0] + jitter, b[1] - 0.5 * jitter])
+            })
+            .collect();
+        let (p1, p2): (Vec<_>, Vec<_>) = noisy.into_iter().unzip();
+        let noisy = Correspondences::new(&p1, &p2).unwrap();
+        for (points, focal) in [(&exact, 900.0), (&noisy, 900.0), (&noisy, 1200.0)] {
+            for start in 0..20 {
+                let sample: Vec<usize> = (0..5).map(|k| (start + 7 * k) % points.len()).collect();
+                let subset = points.subset(&sample).unwrap();
+                let run = |choice| {
+                    solve_and_choose(
+                        MinimalSolver::FivePoint,
+                        choice,
+                        &subset,
+                        points,
+                        focal,
+                        2.0,
+                    )
+                };
+                let best = run(MinimalSolutions::Best);
+                assert_eq!(best.len(), 1, "sample {sample:?}");
+                assert_eq!(
+                    run(MinimalSolutions::BestThenPolish),
+                    best,
+                    "sample {sample:?}"
+                );
+            }
+        }
     }
 
     #[test]

@@ -153,7 +153,7 @@ fn check_stages(
     // With every solution of a minimal sample kept, a sample may give
     // several hypotheses; otherwise there is one per sample.
     let one_per_sample = params.minimal_solver == MinimalSolver::EightPoint
-        || params.minimal_solutions == MinimalSolutions::Best;
+        || params.minimal_solutions != MinimalSolutions::All;
     // Adaptive M stops after some batch: at least one sample, at most M
     // (one per sample).
     let m_matches = match (one_per_sample, params.adaptive_batch > 0) {

@@ -84,6 +84,13 @@ param_enum! {
         Best,
         /// Every solution: a sample gives as many hypotheses as real solutions.
         All,
+        /// As `best`, but the five-point solutions are scored before their
+        /// root polish and only the winner is polished (its consensus set
+        /// then recounted): about 30 % less sampling time, the same choice
+        /// unless two solutions tie to within the unpolished roots' error
+        /// (a few 1e-6, relative) or a match lies that close to `thr_px`.
+        /// The other solvers behave as with `best`.
+        BestThenPolish,
     }
 }
 

@@ -51,6 +51,8 @@ EXPERIMENT FILE (TOML)
   minimal_solver = \"five-point\"   five-point (E at the focal prior) | eight-point
                                | seven-point | six-point-focal (shared unknown f)
   minimal_solutions = \"best\"   best (most matches within thr_px) | all
+                               | best-then-polish (best, five-point roots
+                               scored before their polish: faster)
   sampling = \"uniform\"        uniform | localized (the others among the first
                                match's nearest in image 1: NAPSAC)
   focal_solver = \"kocur\"       kocur | bougnoux | external (read from focal_file)
