@@ -9,7 +9,7 @@
 //! another finite non-zero value is divided by it. The principal point is
 //! the image centre ((W-1)/2, (H-1)/2); no focal length is known.
 
-use crate::mat::{parse_mat, MatFile, MatValues, MatVariable};
+use crate::mat::{parse_mat_selected, MatFile, MatValues, MatVariable};
 use crate::{centre_principal_point, DatasetError, Scene};
 use std::path::{Path, PathBuf};
 
@@ -138,7 +138,10 @@ pub fn parse_scene(
     path: &Path,
     options: LoadOptions,
 ) -> Result<Scene, DatasetError> {
-    let mat = parse_mat(bytes).map_err(|source| DatasetError::Mat {
+    // The images are inflated only when asked for: their size is in the
+    // variables' headers.
+    let wanted = |name: &str| options.images || !matches!(name, "img1" | "img2");
+    let mat = parse_mat_selected(bytes, wanted).map_err(|source| DatasetError::Mat {
         path: path.to_path_buf(),
         source,
     })?;

@@ -98,6 +98,14 @@ impl<'a> Cursor<'a> {
         Ok(self.endian.u32([b[0], b[1], b[2], b[3]]))
     }
 
+    /// The type and byte count of an 8-byte element tag, without reading
+    /// (or requiring) its data.
+    pub(super) fn raw_tag_header(&mut self) -> Result<(u32, u32), MatError> {
+        let kind = self.read_u32()?;
+        let size = self.read_u32()?;
+        Ok((kind, size))
+    }
+
     /// Reads one data element (normal or small format) and skips its padding.
     pub(super) fn tag(&mut self) -> Result<Tag<'a>, MatError> {
         let start = self.pos;
@@ -132,6 +140,16 @@ impl<'a> Cursor<'a> {
         }
         Ok(Tag { kind: first, data })
     }
+}
+
+/// The first `limit` bytes of a zlib stream (fewer when it is shorter),
+/// inflating no further than that.
+pub(super) fn inflate_prefix(compressed: &[u8], limit: usize) -> std::io::Result<Vec<u8>> {
+    let mut out = Vec::with_capacity(limit);
+    ZlibDecoder::new(compressed)
+        .take(limit as u64)
+        .read_to_end(&mut out)?;
+    Ok(out)
 }
 
 /// Inflates a zlib stream, refusing to produce more than

@@ -22,26 +22,51 @@ pub(super) fn parse_matrix(
     endian: Endian,
     offset: usize,
 ) -> Result<MatVariable, MatError> {
-    let mut cursor = Cursor {
+    let mut cursor = contents(data, endian, offset);
+    let mut variable = read_header(&mut cursor, offset)?;
+    if variable.class.is_numeric() {
+        variable.values = read_real_part(&mut cursor, &variable.name, &variable.dims)?;
+    }
+    Ok(variable)
+}
+
+/// The name, class and dimensions of the `miMATRIX` element that starts at
+/// `offset`, from the beginning of its contents (the values need not be
+/// there): values [`MatValues::NotRead`] for a numeric class.
+pub(super) fn parse_header(
+    data: &[u8],
+    endian: Endian,
+    offset: usize,
+) -> Result<MatVariable, MatError> {
+    read_header(&mut contents(data, endian, offset), offset)
+}
+
+/// A cursor over the contents of the `miMATRIX` element at `offset`.
+fn contents(data: &[u8], endian: Endian, offset: usize) -> Cursor<'_> {
+    Cursor {
         bytes: data,
         pos: 0,
         base: offset + 8,
         endian,
-    };
-    let flags = read_array_flags(&mut cursor, offset)?;
-    let dims = read_dimensions(&mut cursor, offset)?;
-    let name = read_name(&mut cursor, offset)?;
-    let values = if flags.class.is_numeric() {
-        read_real_part(&mut cursor, &name, &dims)?
-    } else {
-        MatValues::NotNumeric
-    };
+    }
+}
+
+/// Array flags, dimensions and name, read in order; values
+/// [`MatValues::NotRead`] (numeric) or [`MatValues::NotNumeric`].
+fn read_header(cursor: &mut Cursor, offset: usize) -> Result<MatVariable, MatError> {
+    let flags = read_array_flags(cursor, offset)?;
+    let dims = read_dimensions(cursor, offset)?;
+    let name = read_name(cursor, offset)?;
     Ok(MatVariable {
         name,
         class: flags.class,
         dims,
         complex: flags.complex,
-        values,
+        values: if flags.class.is_numeric() {
+            MatValues::NotRead
+        } else {
+            MatValues::NotNumeric
+        },
     })
 }
 
@@ -127,7 +152,7 @@ fn read_real_part(cursor: &mut Cursor, name: &str, dims: &[usize]) -> Result<Mat
     let count = match &values {
         MatValues::UInt8(v) => v.len(),
         MatValues::Float(v) => v.len(),
-        MatValues::NotNumeric => 0,
+        MatValues::NotNumeric | MatValues::NotRead => 0,
     };
     if count != numel {
         return Err(malformed(

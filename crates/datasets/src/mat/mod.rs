@@ -27,8 +27,44 @@
 mod element;
 mod matrix;
 
-use element::{inflate, Cursor, Endian, MI_COMPRESSED, MI_MATRIX};
-use matrix::parse_matrix;
+use element::{inflate, inflate_prefix, Cursor, Endian, MI_COMPRESSED, MI_MATRIX};
+use matrix::{parse_header, parse_matrix};
+
+/// Bytes of a compressed variable inflated to read its header (flags,
+/// dimensions, name) when its values are not wanted.
+pub const HEADER_PREFIX_BYTES: usize = 1024;
+
+/// `variable`, its values dropped ([`MatValues::NotRead`]) when numeric
+/// and not wanted.
+fn unless_unwanted(mut variable: MatVariable, read_values: impl Fn(&str) -> bool) -> MatVariable {
+    if variable.class.is_numeric() && !read_values(&variable.name) {
+        variable.values = MatValues::NotRead;
+    }
+    variable
+}
+
+/// The header of the variable in a compressed element (values
+/// [`MatValues::NotRead`], or [`MatValues::NotNumeric`]) from the first
+/// [`HEADER_PREFIX_BYTES`] of its stream; `None` when they do not hold a
+/// readable `miMATRIX` header, or hold the whole stream (then it is as cheap
+/// to read it all).
+fn compressed_header(compressed: &[u8], endian: Endian, offset: usize) -> Option<MatVariable> {
+    let prefix = inflate_prefix(compressed, HEADER_PREFIX_BYTES).ok()?;
+    if prefix.len() < HEADER_PREFIX_BYTES {
+        return None;
+    }
+    let mut cursor = Cursor {
+        bytes: &prefix,
+        pos: 0,
+        base: 0,
+        endian,
+    };
+    let (kind, _size) = cursor.raw_tag_header().ok()?;
+    if kind != MI_MATRIX {
+        return None;
+    }
+    parse_header(cursor.rest(), endian, offset).ok()
+}
 
 /// Upper bound on the decompressed size of one `miCOMPRESSED` element
 /// (512 MiB): a guard against decompression bombs. AdelaideRMF variables
@@ -207,6 +243,9 @@ pub enum MatValues {
     Float(Vec<f64>),
     /// A non-numeric class: values not decoded.
     NotNumeric,
+    /// A numeric variable whose values were not asked for
+    /// ([`parse_mat_selected`]): name, class and dimensions only.
+    NotRead,
 }
 
 /// One variable of a MAT-file.
@@ -231,12 +270,12 @@ impl MatVariable {
     }
 
     /// The values as `f64`, column-major (bytes are widened). `None` for a
-    /// non-numeric class.
+    /// non-numeric class or values not read.
     pub fn to_f64(&self) -> Option<Vec<f64>> {
         match &self.values {
             MatValues::UInt8(bytes) => Some(bytes.iter().map(|&b| f64::from(b)).collect()),
             MatValues::Float(values) => Some(values.clone()),
-            MatValues::NotNumeric => None,
+            MatValues::NotNumeric | MatValues::NotRead => None,
         }
     }
 }
@@ -269,6 +308,29 @@ impl MatFile {
 /// assert!(datasets::mat::parse_mat(&bytes[..100]).is_err());
 /// ```
 pub fn parse_mat(bytes: &[u8]) -> Result<MatFile, MatError> {
+    parse_mat_selected(bytes, |_| true)
+}
+
+/// [`parse_mat`], decoding the values only of the variables whose name
+/// `read_values` accepts; the others keep their name, class and dimensions
+/// with [`MatValues::NotRead`]. A compressed variable that is not read is
+/// inflated only as far as its header ([`HEADER_PREFIX_BYTES`], plus what
+/// the decoder reads ahead), so that skipping a large variable (an image)
+/// skips most of its cost; damage further on in its stream goes unnoticed. A compressed element whose
+/// header cannot be read from that prefix is read whole, with the errors of
+/// [`parse_mat`].
+///
+/// ```
+/// # let mut bytes = vec![b' '; 128];
+/// # bytes[..10].copy_from_slice(b"MATLAB 5.0");
+/// # bytes[124..128].copy_from_slice(&[0x00, 0x01, b'I', b'M']);
+/// let file = datasets::mat::parse_mat_selected(&bytes, |name| name != "img1").unwrap();
+/// assert!(file.variables.is_empty());
+/// ```
+pub fn parse_mat_selected(
+    bytes: &[u8],
+    read_values: impl Fn(&str) -> bool,
+) -> Result<MatFile, MatError> {
     if bytes.len() < HEADER_LEN {
         return Err(MatError::TooShort { len: bytes.len() });
     }
@@ -297,6 +359,12 @@ pub fn parse_mat(bytes: &[u8]) -> Result<MatFile, MatError> {
         let tag = cursor.tag()?;
         match tag.kind {
             MI_COMPRESSED => {
+                if let Some(header) = compressed_header(tag.data, endian, offset) {
+                    if !read_values(&header.name) {
+                        variables.push(header);
+                        continue;
+                    }
+                }
                 let inflated = inflate(tag.data, offset)?;
                 let mut inner = Cursor {
                     bytes: &inflated,
@@ -308,11 +376,15 @@ pub fn parse_mat(bytes: &[u8]) -> Result<MatFile, MatError> {
                     let inner_offset = inner.pos;
                     let inner_tag = inner.tag()?;
                     if inner_tag.kind == MI_MATRIX {
-                        variables.push(parse_matrix(inner_tag.data, endian, inner_offset)?);
+                        let variable = parse_matrix(inner_tag.data, endian, inner_offset)?;
+                        variables.push(unless_unwanted(variable, &read_values));
                     }
                 }
             }
-            MI_MATRIX => variables.push(parse_matrix(tag.data, endian, offset)?),
+            MI_MATRIX => {
+                let variable = parse_matrix(tag.data, endian, offset)?;
+                variables.push(unless_unwanted(variable, &read_values));
+            }
             // Other top-level elements (e.g. subsystem data) are skipped.
             _ => {}
         }
@@ -321,167 +393,4 @@ pub fn parse_mat(bytes: &[u8]) -> Result<MatFile, MatError> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::element::*;
-    use super::*;
-
-    /// (name, class code, dims, element type, raw data) of a test variable.
-    type TestVar<'a> = (&'a str, u8, &'a [i32], u32, Vec<u8>);
-
-    /// Builds one uncompressed little- or big-endian MAT v5 file from
-    /// (name, class code, dims, element type, raw data) tuples.
-    fn build_mat(big_endian: bool, vars: &[TestVar]) -> Vec<u8> {
-        let u32b = |v: u32| {
-            if big_endian {
-                v.to_be_bytes()
-            } else {
-                v.to_le_bytes()
-            }
-        };
-        let element = |kind: u32, data: &[u8]| {
-            let mut out = Vec::new();
-            out.extend_from_slice(&u32b(kind));
-            out.extend_from_slice(&u32b(data.len() as u32));
-            out.extend_from_slice(data);
-            while out.len() % 8 != 0 {
-                out.push(0);
-            }
-            out
-        };
-        let mut file = vec![b' '; 128];
-        file[124..126].copy_from_slice(&if big_endian { [1u8, 0] } else { [0u8, 1] });
-        file[126..128].copy_from_slice(if big_endian { b"MI" } else { b"IM" });
-        for (name, class, dims, kind, data) in vars {
-            let mut body = Vec::new();
-            let mut flags = Vec::new();
-            flags.extend_from_slice(&u32b(u32::from(*class)));
-            flags.extend_from_slice(&u32b(0));
-            body.extend(element(MI_UINT32, &flags));
-            let dim_bytes: Vec<u8> = dims.iter().flat_map(|&d| u32b(d as u32)).collect();
-            body.extend(element(MI_INT32, &dim_bytes));
-            body.extend(element(MI_INT8, name.as_bytes()));
-            body.extend(element(*kind, data));
-            file.extend(element(MI_MATRIX, &body));
-        }
-        file
-    }
-
-    #[test]
-    fn reads_doubles_in_both_byte_orders() {
-        for big in [false, true] {
-            let values = [1.5f64, -2.0, 3.25, 4.0, 5.0, 6.0];
-            let data: Vec<u8> = values
-                .iter()
-                .flat_map(|v| {
-                    if big {
-                        v.to_be_bytes()
-                    } else {
-                        v.to_le_bytes()
-                    }
-                })
-                .collect();
-            let bytes = build_mat(big, &[("data", 6, &[2, 3], MI_DOUBLE, data)]);
-            let file = parse_mat(&bytes).unwrap();
-            let var = file.get("data").unwrap();
-            assert_eq!(var.class, MatClass::Double);
-            assert_eq!(var.dims, vec![2, 3]);
-            assert_eq!(var.to_f64().unwrap(), values.to_vec());
-        }
-    }
-
-    #[test]
-    fn widens_compact_storage_types() {
-        // MATLAB stores a double array of small integers as miUINT8 or miINT16.
-        let bytes = build_mat(
-            false,
-            &[
-                ("a", 6, &[1, 3], MI_UINT8, vec![0, 7, 255]),
-                (
-                    "b",
-                    6,
-                    &[1, 2],
-                    MI_INT16,
-                    [-3i16, 300].iter().flat_map(|v| v.to_le_bytes()).collect(),
-                ),
-            ],
-        );
-        let file = parse_mat(&bytes).unwrap();
-        assert_eq!(
-            file.get("a").unwrap().to_f64().unwrap(),
-            vec![0.0, 7.0, 255.0]
-        );
-        assert_eq!(file.get("b").unwrap().to_f64().unwrap(), vec![-3.0, 300.0]);
-    }
-
-    #[test]
-    fn reads_compressed_elements() {
-        use flate2::write::ZlibEncoder;
-        use std::io::Write;
-        let plain = build_mat(false, &[("label", 6, &[1, 4], MI_UINT8, vec![0, 1, 2, 2])]);
-        let mut encoder = ZlibEncoder::new(Vec::new(), flate2::Compression::default());
-        encoder.write_all(&plain[128..]).unwrap();
-        let compressed = encoder.finish().unwrap();
-        let mut file = plain[..128].to_vec();
-        file.extend_from_slice(&MI_COMPRESSED.to_le_bytes());
-        file.extend_from_slice(&(compressed.len() as u32).to_le_bytes());
-        file.extend_from_slice(&compressed);
-        let parsed = parse_mat(&file).unwrap();
-        assert_eq!(
-            parsed.get("label").unwrap().to_f64().unwrap(),
-            vec![0.0, 1.0, 2.0, 2.0]
-        );
-    }
-
-    #[test]
-    fn small_element_names_are_read() {
-        // Names up to 4 bytes are stored as small data elements by MATLAB.
-        let mut bytes = build_mat(
-            false,
-            &[("x", 6, &[1, 1], MI_DOUBLE, 2.0f64.to_le_bytes().to_vec())],
-        );
-        // Rewrite the name element (8-byte tag + 8 padded bytes) as a small element.
-        let name_at = 128 + 8 + 16 + 16;
-        let mut small = Vec::new();
-        small.extend_from_slice(&((1u32 << 16) | MI_INT8).to_le_bytes());
-        small.extend_from_slice(&[b'x', 0, 0, 0]);
-        bytes.splice(name_at..name_at + 16, small);
-        let size_at = 128 + 4;
-        let size = u32::from_le_bytes(bytes[size_at..size_at + 4].try_into().unwrap()) - 8;
-        bytes[size_at..size_at + 4].copy_from_slice(&size.to_le_bytes());
-        let file = parse_mat(&bytes).unwrap();
-        assert_eq!(file.get("x").unwrap().to_f64().unwrap(), vec![2.0]);
-    }
-
-    #[test]
-    fn dims_not_matching_data_is_an_error() {
-        let bytes = build_mat(false, &[("data", 6, &[2, 3], MI_UINT8, vec![1, 2, 3])]);
-        let err = parse_mat(&bytes).unwrap_err();
-        assert!(err.to_string().contains("\"data\""), "{err}");
-        assert!(err.to_string().contains("need 6 values"), "{err}");
-    }
-
-    #[test]
-    fn truncation_is_an_error_not_a_panic() {
-        let bytes = build_mat(
-            false,
-            &[("data", 6, &[2, 3], MI_UINT8, vec![1, 2, 3, 4, 5, 6])],
-        );
-        for cut in 0..bytes.len() {
-            let _ = parse_mat(&bytes[..cut]);
-        }
-        assert!(matches!(
-            parse_mat(&bytes[..150]),
-            Err(MatError::Truncated { .. })
-        ));
-    }
-
-    #[test]
-    fn bad_endian_indicator() {
-        let mut bytes = build_mat(false, &[]);
-        bytes[126] = b'X';
-        assert!(matches!(
-            parse_mat(&bytes),
-            Err(MatError::BadEndianIndicator { .. })
-        ));
-    }
-}
+mod tests;

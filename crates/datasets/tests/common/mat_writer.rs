@@ -46,7 +46,7 @@ pub fn write_mat(file: &MatFile) -> Vec<u8> {
                 MI_DOUBLE,
                 values.iter().flat_map(|v| v.to_le_bytes()).collect(),
             ),
-            MatValues::NotNumeric => continue,
+            MatValues::NotNumeric | MatValues::NotRead => continue,
         };
         let mut body = Vec::new();
         let flags = u32::from(var.class.code()) | if var.complex { 0x0800 } else { 0 };
