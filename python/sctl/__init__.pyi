@@ -108,7 +108,7 @@ def segment(
     eight_point: Literal["normalized", "plain"] = "normalized",
     minimal_solver: Literal["five-point", "eight-point", "seven-point", "six-point-focal"] = "five-point",
     minimal_solutions: Literal["best", "all", "best-then-polish"] = "best",
-    sampling: Literal["uniform", "localized"] = "uniform",
+    sampling: Literal["uniform", "localized", "mixed"] = "uniform",
     focal_solver: Literal["kocur", "bougnoux"] = "kocur",
     weight_sets: _WeightSets = "adelaidermf",
     max_iters: int = 100,

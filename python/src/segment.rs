@@ -33,8 +33,9 @@ use std::fmt::Write as _;
 ///     The named parameter set that gives every key not passed: "default"
 ///     (the defaults below), "thesis" (the thesis text's Algorithm 1:
 ///     method="semical", minimal_solver="eight-point"), "fast" (fewer
-///     samples and IRLS iterations, 200 matches clustered and the others
-///     joined: 4-15 times faster, somewhat less accurate) or "large" (1 000 matches and more: localized sampling,
+///     samples and IRLS iterations, mixed sampling, 200 matches clustered
+///     and the others joined: 5-15 times faster, as accurate on the test
+///     data) or "large" (1 000 matches and more: localized sampling,
 ///     clusters under 2 % of the matches dropped). ``sctl.default_params(profile)`` lists its values.
 /// seed : int, default 12345
 ///     Seed of the hypothesis sampling. The labels depend on the input, the
@@ -60,7 +61,7 @@ use std::fmt::Write as _;
 ///     - eight_point = "normalized"  ("normalized" or "plain")
 ///     - minimal_solver = "five-point"  ("five-point", "eight-point", "seven-point" or "six-point-focal")
 ///     - minimal_solutions = "best"  ("best": most matches within thr_px, "all", or "best-then-polish": best, five-point roots scored before their polish)
-///     - sampling = "uniform"        ("uniform", or "localized": the others among the first match's nearest)
+///     - sampling = "uniform"        ("uniform", "localized": the others among the first match's nearest, or "mixed": the two in turn)
 ///     - focal_solver = "kocur"      ("kocur" or "bougnoux")
 ///     - weight_sets = "adelaidermf" ("adelaidermf", "hopef" or [[w_f1, w_pp1, w_f2, w_pp2], ...])
 ///     - max_iters = 100             (iteration cap of the robust focal solver)

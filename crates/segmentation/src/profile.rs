@@ -11,9 +11,10 @@ use crate::{MinimalSolutions, MinimalSolver, Params, Sampling, SizeRule};
 /// * `thesis`: [`Params::thesis`], the thesis text's semi-calibrated
 ///   Algorithm 1;
 /// * `fast`: [`Params::fast`], M 1000, one IRLS iteration, the five-point
-///   roots scored before their polish and 200 matches clustered, the
-///   others joined to the nearest cluster: four to fifteen times cheaper
-///   than `default` (results/README.md, "A fast profile");
+///   roots scored before their polish, uniform and localized samples in
+///   turn, and 200 matches clustered, the others joined to the nearest
+///   cluster: five to fifteen times cheaper than `default`
+///   (results/README.md, "A fast profile");
 /// * `large`: [`Params::large`], for scenes of 1 000 matches and more:
 ///   localized sampling, a minimum cluster size of 2 % of N and 1000
 ///   matches clustered, the others joined to the nearest cluster
@@ -94,11 +95,12 @@ impl Params {
     /// IRLS iterations, uniform or localized sampling and adaptive M; the
     /// five-point roots scored before their polish
     /// (`minimal_solutions = "best-then-polish"`), which left every label
-    /// of those splits unchanged; and steps 1–9 on 200 of the matches, the
+    /// of those splits unchanged; steps 1–9 on 200 of the matches, the
     /// others joining the nearest cluster (`cluster_subset = 200`: of 200,
     /// 300, 400, 500, 750 and all, the cheapest within 2 points of the
-    /// default's ME on both splits). See results/README.md, "A fast
-    /// profile".
+    /// default's ME on both splits); and uniform and localized sampling in
+    /// turn (`sampling = "mixed"`, lower ME than uniform on both splits).
+    /// See results/README.md, "A fast profile".
     pub fn fast() -> Self {
         Self {
             minimal_solver: MinimalSolver::FivePoint,
@@ -106,6 +108,7 @@ impl Params {
             num_samples: 1000,
             irls_iters: 1,
             cluster_subset: 200,
+            sampling: Sampling::Mixed,
             ..Self::default()
         }
     }

@@ -86,11 +86,14 @@ pub struct MinimalSampler {
     /// first, ties by index, flattened; empty for uniform sampling.
     neighbours: Vec<u32>,
     k: usize,
+    /// [`Sampling::Mixed`]: the even samples uniform.
+    mixed: bool,
 }
 
 impl MinimalSampler {
     /// The sampler of `points1` (image 1) for samples of `sample_size`:
-    /// for [`Sampling::Localized`] the [`neighbourhood_size`] nearest
+    /// for [`Sampling::Localized`] and [`Sampling::Mixed`] the
+    /// [`neighbourhood_size`] nearest
     /// neighbours of every match, found in an R*-tree (`rstar`).
     pub fn new(points1: &[[f64; 2]], sampling: Sampling, sample_size: usize) -> Self {
         let n = points1.len();
@@ -99,6 +102,7 @@ impl MinimalSampler {
                 n,
                 neighbours: Vec::new(),
                 k: 0,
+                mixed: false,
             };
         }
         let k = neighbourhood_size(n, sample_size);
@@ -113,7 +117,12 @@ impl MinimalSampler {
             .into_par_iter()
             .flat_map_iter(|i| nearest(&tree, points1[i], i, k))
             .collect();
-        Self { n, neighbours, k }
+        Self {
+            n,
+            neighbours,
+            k,
+            mixed: sampling == Sampling::Mixed,
+        }
     }
 
     /// The neighbourhood of match `i` (empty for uniform sampling).
@@ -125,14 +134,16 @@ impl MinimalSampler {
         }
     }
 
-    /// The sample of hypothesis `index`: `size` distinct matches. Uniform:
-    /// [`minimal_sample`]. Localized: from stream `index` of
+    /// The sample of hypothesis `index`: `size` distinct matches. Uniform
+    /// (and the even indices of mixed sampling): [`minimal_sample`].
+    /// Localized (and the odd indices of mixed): from stream `index` of
     /// [`hypothesis_rng`], the first match uniformly, then `size − 1`
     /// distinct matches uniformly among its neighbourhood (all other
     /// matches when the neighbourhood is too small). At most `n` matches.
     pub fn sample(&self, seed: u64, index: usize, size: usize) -> Vec<usize> {
         let size = size.min(self.n);
-        if self.neighbours.is_empty() || size == 0 {
+        let uniform_turn = self.mixed && index % 2 == 0;
+        if self.neighbours.is_empty() || size == 0 || uniform_turn {
             return minimal_sample(seed, index, self.n, size);
         }
         let mut rng = hypothesis_rng(seed, index);
@@ -242,6 +253,23 @@ mod tests {
         let sampler = MinimalSampler::new(&points, Sampling::Uniform, 8);
         for j in 0..100 {
             assert_eq!(sampler.sample(9, j, 8), minimal_sample(9, j, 50, 8));
+        }
+    }
+
+    #[test]
+    fn mixed_sampling_alternates_uniform_and_localized() {
+        let points = grid_points(200, 4);
+        let uniform = MinimalSampler::new(&points, Sampling::Uniform, 5);
+        let localized = MinimalSampler::new(&points, Sampling::Localized, 5);
+        let mixed = MinimalSampler::new(&points, Sampling::Mixed, 5);
+        assert_eq!(mixed.neighbourhood(7), localized.neighbourhood(7));
+        for j in 0..100 {
+            let expected = if j % 2 == 0 { &uniform } else { &localized };
+            assert_eq!(
+                mixed.sample(3, j, 5),
+                expected.sample(3, j, 5),
+                "sample {j}"
+            );
         }
     }
 

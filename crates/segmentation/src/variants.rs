@@ -146,6 +146,10 @@ param_enum! {
         /// [`crate::neighbourhood_size`] nearest matches in image 1
         /// ([`crate::MinimalSampler`]).
         Localized,
+        /// The two in turn: even hypotheses uniform, odd ones localized, so
+        /// that structures spread over the image and compact ones both get
+        /// samples.
+        Mixed,
     }
 }
 

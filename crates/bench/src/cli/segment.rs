@@ -38,8 +38,9 @@ pub struct Args {
     #[arg(long, value_name = "FILE")]
     pub config: Option<PathBuf>,
     /// Named parameter set: default | thesis (the thesis text's Algorithm 1)
-    /// | fast (fewer samples and IRLS iterations, 200 matches clustered and
-    /// the others joined: 4-15 times faster, somewhat less accurate) | large (1 000 matches and more: localized
+    /// | fast (fewer samples and IRLS iterations, mixed sampling, 200 matches
+    /// clustered and the others joined: 5-15 times faster, as accurate on
+    /// the test data) | large (1 000 matches and more: localized
     /// sampling, clusters under 2 % of the matches dropped, 1000 matches
     /// clustered and the others joined). With --config it replaces the file's
     /// `profile` key; the keys the file gives still override it [default:

@@ -29,7 +29,8 @@ EXPERIMENT FILE (TOML)
   profile = \"default\"          default | thesis | fast | large: the values of every key
                                not given here (default: those below; thesis:
                                the thesis text's; fast: fewer samples and IRLS
-                               iterations; large: localized sampling, clusters
+                               iterations, mixed sampling, 200 matches
+                               clustered; large: localized sampling, clusters
                                under 2 % of N dropped). Not a [sweep] key
   method = \"baseline\"          baseline (no focal filter) | semical (Algorithm 1)
   num_samples = 3000           M, minimal samples per scene (at most, adaptive)
@@ -54,7 +55,8 @@ EXPERIMENT FILE (TOML)
                                | best-then-polish (best, five-point roots
                                scored before their polish: faster)
   sampling = \"uniform\"        uniform | localized (the others among the first
-                               match's nearest in image 1: NAPSAC)
+                               match's nearest in image 1: NAPSAC) | mixed
+                               (the two in turn)
   focal_solver = \"kocur\"       kocur | bougnoux | external (read from focal_file)
   focal_file = \"f{seed}.csv\"   focal_solver = \"external\": CSV of scene,hypothesis,f1,f2
   weight_sets = \"adelaidermf\"  adelaidermf | hopef | [[w_f1, w_pp1, w_f2, w_pp2], ...]
