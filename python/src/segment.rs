@@ -34,8 +34,8 @@ use std::fmt::Write as _;
 ///     (the defaults below), "thesis" (the thesis text's Algorithm 1:
 ///     method="semical", minimal_solver="eight-point"), "fast" (fewer
 ///     samples and IRLS iterations, mixed sampling, 200 matches clustered
-///     and the others joined: 5-15 times faster, as accurate on the test
-///     data) or "large" (1 000 matches and more: localized sampling,
+///     and the others joined: 7-20 times faster, no less accurate on the
+///     test data) or "large" (1 000 matches and more: localized sampling,
 ///     clusters under 2 % of the matches dropped). ``sctl.default_params(profile)`` lists its values.
 /// seed : int, default 12345
 ///     Seed of the hypothesis sampling. The labels depend on the input, the

@@ -39,8 +39,8 @@ pub struct Args {
     pub config: Option<PathBuf>,
     /// Named parameter set: default | thesis (the thesis text's Algorithm 1)
     /// | fast (fewer samples and IRLS iterations, mixed sampling, 200 matches
-    /// clustered and the others joined: 5-15 times faster, as accurate on
-    /// the test data) | large (1 000 matches and more: localized
+    /// clustered and the others joined: 7-20 times faster, no less accurate
+    /// on the test data) | large (1 000 matches and more: localized
     /// sampling, clusters under 2 % of the matches dropped, 1000 matches
     /// clustered and the others joined). With --config it replaces the file's
     /// `profile` key; the keys the file gives still override it [default:
