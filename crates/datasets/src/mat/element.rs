@@ -142,32 +142,36 @@ impl<'a> Cursor<'a> {
     }
 }
 
-/// The first `limit` bytes of a zlib stream (fewer when it is shorter),
-/// inflating no further than that.
-pub(super) fn inflate_prefix(compressed: &[u8], limit: usize) -> std::io::Result<Vec<u8>> {
-    let mut out = Vec::with_capacity(limit);
-    ZlibDecoder::new(compressed)
-        .take(limit as u64)
-        .read_to_end(&mut out)?;
-    Ok(out)
-}
-
 /// Inflates a zlib stream, refusing to produce more than
-/// [`MAX_DECOMPRESSED_BYTES`].
-pub(super) fn inflate(compressed: &[u8], offset: usize) -> Result<Vec<u8>, MatError> {
+/// [`MAX_DECOMPRESSED_BYTES`]. Once `prefix_len` bytes are out, `stop`
+/// sees them and may end the inflation there (`None`): a caller that only
+/// needs a variable's header does not inflate the rest. A stream shorter
+/// than `prefix_len` is inflated whole without asking.
+pub(super) fn inflate(
+    compressed: &[u8],
+    offset: usize,
+    prefix_len: usize,
+    stop: impl FnOnce(&[u8]) -> bool,
+) -> Result<Option<Vec<u8>>, MatError> {
+    let failed = |e: std::io::Error| MatError::Decompress {
+        offset,
+        message: e.to_string(),
+    };
     let mut out = Vec::new();
     let mut decoder = ZlibDecoder::new(compressed).take(MAX_DECOMPRESSED_BYTES + 1);
-    decoder
+    (&mut decoder)
+        .take(prefix_len as u64)
         .read_to_end(&mut out)
-        .map_err(|e| MatError::Decompress {
-            offset,
-            message: e.to_string(),
-        })?;
+        .map_err(failed)?;
+    if out.len() == prefix_len && stop(&out) {
+        return Ok(None);
+    }
+    decoder.read_to_end(&mut out).map_err(failed)?;
     if out.len() as u64 > MAX_DECOMPRESSED_BYTES {
         return Err(MatError::DecompressedTooLarge {
             offset,
             limit: MAX_DECOMPRESSED_BYTES,
         });
     }
-    Ok(out)
+    Ok(Some(out))
 }

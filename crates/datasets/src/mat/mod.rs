@@ -27,7 +27,7 @@
 mod element;
 mod matrix;
 
-use element::{inflate, inflate_prefix, Cursor, Endian, MI_COMPRESSED, MI_MATRIX};
+use element::{inflate, Cursor, Endian, MI_COMPRESSED, MI_MATRIX};
 use matrix::{parse_header, parse_matrix};
 
 /// Bytes of a compressed variable inflated to read its header (flags,
@@ -43,18 +43,18 @@ fn unless_unwanted(mut variable: MatVariable, read_values: impl Fn(&str) -> bool
     variable
 }
 
-/// The header of the variable in a compressed element (values
-/// [`MatValues::NotRead`], or [`MatValues::NotNumeric`]) from the first
-/// [`HEADER_PREFIX_BYTES`] of its stream; `None` when they do not hold a
-/// readable `miMATRIX` header, or hold the whole stream (then it is as cheap
-/// to read it all).
-fn compressed_header(compressed: &[u8], endian: Endian, offset: usize) -> Option<MatVariable> {
-    let prefix = inflate_prefix(compressed, HEADER_PREFIX_BYTES).ok()?;
-    if prefix.len() < HEADER_PREFIX_BYTES {
-        return None;
-    }
+/// The header (values [`MatValues::NotRead`], or
+/// [`MatValues::NotNumeric`]) of the variable whose inflated stream begins
+/// with `prefix`, when `read_values` does not want it; `None` when it is
+/// wanted or `prefix` holds no readable `miMATRIX` header.
+fn unwanted_header(
+    prefix: &[u8],
+    endian: Endian,
+    offset: usize,
+    read_values: impl Fn(&str) -> bool,
+) -> Option<MatVariable> {
     let mut cursor = Cursor {
-        bytes: &prefix,
+        bytes: prefix,
         pos: 0,
         base: 0,
         endian,
@@ -63,7 +63,8 @@ fn compressed_header(compressed: &[u8], endian: Endian, offset: usize) -> Option
     if kind != MI_MATRIX {
         return None;
     }
-    parse_header(cursor.rest(), endian, offset).ok()
+    let header = parse_header(cursor.rest(), endian, offset).ok()?;
+    (!read_values(&header.name)).then_some(header)
 }
 
 /// Upper bound on the decompressed size of one `miCOMPRESSED` element
@@ -359,13 +360,15 @@ pub fn parse_mat_selected(
         let tag = cursor.tag()?;
         match tag.kind {
             MI_COMPRESSED => {
-                if let Some(header) = compressed_header(tag.data, endian, offset) {
-                    if !read_values(&header.name) {
-                        variables.push(header);
-                        continue;
-                    }
-                }
-                let inflated = inflate(tag.data, offset)?;
+                let mut skipped = None;
+                let inflated = inflate(tag.data, offset, HEADER_PREFIX_BYTES, |prefix| {
+                    skipped = unwanted_header(prefix, endian, offset, &read_values);
+                    skipped.is_some()
+                })?;
+                let Some(inflated) = inflated else {
+                    variables.extend(skipped);
+                    continue;
+                };
                 let mut inner = Cursor {
                     bytes: &inflated,
                     pos: 0,
