@@ -115,7 +115,7 @@ pub fn five_point(
 /// let roots = FivePointRoots::new(&q1, &q2).unwrap();
 /// let polished = five_point(&q1, &q2).unwrap();
 /// assert_eq!(roots.polished(0).unwrap(), polished[0]);
-/// assert!((roots.essentials()[0] - polished[0]).norm() < 1e-6);
+/// assert!((roots.unpolished(0).unwrap() - polished[0]).norm() < 1e-6);
 /// ```
 #[derive(Debug, Clone)]
 pub struct FivePointRoots {
@@ -126,8 +126,6 @@ pub struct FivePointRoots {
     /// `(x, y, z)` of each real root, as the Sturm sequence and the back
     /// substitution give it.
     roots: Vec<[f64; 3]>,
-    /// `E = x X + y Y + z Z + W` of each root, unit norm, canonical sign.
-    essentials: Vec<Matrix3<f64>>,
 }
 
 impl FivePointRoots {
@@ -151,20 +149,16 @@ impl FivePointRoots {
         let zs = sturm_roots(&determinant(&hidden)).ok_or(GeometryError::Degenerate(
             "5-point: the degree-10 polynomial is not finite or vanishes",
         ))?;
-        let mut found = Self {
+        let roots = zs
+            .as_slice()
+            .iter()
+            .filter_map(|&z| back_substitute(&hidden, z).map(|(x, y)| [x, y, z]))
+            .collect();
+        Ok(Self {
             basis,
             system,
-            roots: Vec::with_capacity(zs.as_slice().len()),
-            essentials: Vec::with_capacity(zs.as_slice().len()),
-        };
-        for &z in zs.as_slice() {
-            let Some((x, y)) = back_substitute(&hidden, z) else {
-                continue;
-            };
-            found.roots.push([x, y, z]);
-            found.essentials.push(found.essential([x, y, z])?);
-        }
-        Ok(found)
+            roots,
+        })
     }
 
     /// Number of roots.
@@ -177,10 +171,10 @@ impl FivePointRoots {
         self.roots.is_empty()
     }
 
-    /// The unpolished essential matrix of each root (unit norm, canonical
-    /// sign), in root order.
-    pub fn essentials(&self) -> &[Matrix3<f64>] {
-        &self.essentials
+    /// Root `k`'s essential matrix as found, before the polish (unit norm,
+    /// canonical sign). Panics if `k >= len()`.
+    pub fn unpolished(&self, k: usize) -> Result<Matrix3<f64>, GeometryError> {
+        self.essential(self.roots[k])
     }
 
     /// Root `k` after [`POLISH_STEPS`] Gauss–Newton steps on the ten

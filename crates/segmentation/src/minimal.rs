@@ -87,11 +87,13 @@ fn best_then_polish(
     let Ok(roots) = FivePointRoots::new(&q1, &q2) else {
         return Vec::new();
     };
-    let unpolished = roots
-        .essentials()
-        .iter()
-        .map(|e| essential_to_fundamental(e, focal))
-        .enumerate()
+    let unpolished = (0..roots.len())
+        .filter_map(|k| {
+            Some((
+                k,
+                essential_to_fundamental(&roots.unpolished(k).ok()?, focal),
+            ))
+        })
         .filter(|(_, f)| f.iter().all(|v| v.is_finite()));
     let Some((winner, _)) = best_consensus(points, unpolished, thr_px * thr_px) else {
         return Vec::new();
