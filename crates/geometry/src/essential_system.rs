@@ -8,6 +8,7 @@
 //! `2 E Eᵀ E − tr(E Eᵀ) E = 0` (Nistér 2004, Eqs. 4–5).
 
 use crate::poly::Equations;
+use crate::simd::dispatch;
 use nalgebra::{Matrix3, SMatrix};
 
 /// Exponents `(x, y, z)` of the 20 monomials of degree ≤ 3 in Nistér's
@@ -175,6 +176,59 @@ impl Equations for EssentialSystem {
     /// coefficients with the monomial vector and its partial derivatives;
     /// `Σ |term| = |C| |m|`.
     fn evaluate(&self, p: [f64; 3]) -> [(f64, [f64; 3], f64); 10] {
+        evaluate(self, p)
+    }
+}
+
+dispatch! {
+    /// [`evaluate_kernel`] in the build [`crate::simd::avx2`] chooses.
+    fn evaluate(system: &EssentialSystem, p: [f64; 3]) -> [(f64, [f64; 3], f64); 10]
+        => evaluate_kernel
+}
+
+/// The body of [`EssentialSystem`]'s [`Equations::evaluate`]: the
+/// products `C [m ∂ₓm ∂ᵧm ∂_z m]` and `|C| |m|` as nalgebra forms them
+/// (each entry `C_k0 m_0 + C_k1 m_1 + …` summed in column order, so the
+/// same bits), written out so that they compile into the chosen build.
+#[inline(always)]
+fn evaluate_kernel(system: &EssentialSystem, p: [f64; 3]) -> [(f64, [f64; 3], f64); 10] {
+    let powers = |t: f64| [1.0, t, t * t, t * t * t];
+    let (px, py, pz) = (powers(p[0]), powers(p[1]), powers(p[2]));
+    let lower = |pw: &[f64; 4], a: usize| if a == 0 { 0.0 } else { a as f64 * pw[a - 1] };
+    // Columns: the monomials, their x, y and z derivatives, |monomials|.
+    let mut monomials = [[0.0; 20]; 5];
+    for (j, &(a, b, c)) in MONOMIALS.iter().enumerate() {
+        monomials[0][j] = px[a] * py[b] * pz[c];
+        monomials[1][j] = lower(&px, a) * py[b] * pz[c];
+        monomials[2][j] = px[a] * lower(&py, b) * pz[c];
+        monomials[3][j] = px[a] * py[b] * lower(&pz, c);
+        monomials[4][j] = monomials[0][j].abs();
+    }
+    // Column-major storage: entry (k, j) at 10 j + k.
+    let (c, m) = (system.coefficients.as_slice(), system.magnitudes.as_slice());
+    let mut sums = [[0.0; 10]; 5];
+    for (column, (sum, x)) in sums.iter_mut().zip(&monomials).enumerate() {
+        let matrix = if column == 4 { m } else { c };
+        for k in 0..10 {
+            sum[k] = matrix[k] * x[0];
+        }
+        for j in 1..20 {
+            for k in 0..10 {
+                sum[k] += matrix[10 * j + k] * x[j];
+            }
+        }
+    }
+    std::array::from_fn(|k| (sums[0][k], [sums[1][k], sums[2][k], sums[3][k]], sums[4][k]))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::poly::{det, mat_mul, trace_constraint, transpose, Poly3, PolyMatrix};
+
+    /// [`evaluate_kernel`]'s products formed by nalgebra instead, as the
+    /// kernel's comment describes them.
+    fn nalgebra_products(system: &EssentialSystem, p: [f64; 3]) -> [(f64, [f64; 3], f64); 10] {
         let powers = |t: f64| [1.0, t, t * t, t * t * t];
         let (px, py, pz) = (powers(p[0]), powers(p[1]), powers(p[2]));
         let lower = |pw: &[f64; 4], a: usize| if a == 0 { 0.0 } else { a as f64 * pw[a - 1] };
@@ -185,19 +239,13 @@ impl Equations for EssentialSystem {
             monomials[(j, 2)] = px[a] * lower(&py, b) * pz[c];
             monomials[(j, 3)] = px[a] * py[b] * lower(&pz, c);
         }
-        let evaluated = self.coefficients * monomials;
-        let magnitude = self.magnitudes * monomials.column(0).abs();
+        let evaluated = system.coefficients * monomials;
+        let magnitude = system.magnitudes * monomials.column(0).abs();
         std::array::from_fn(|k| {
             let row = evaluated.row(k);
             (row[0], [row[1], row[2], row[3]], magnitude[k])
         })
     }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::poly::{det, mat_mul, trace_constraint, transpose, Poly3, PolyMatrix};
 
     /// The fixed-size expansion equals the dense `Poly3` one.
     #[test]
@@ -228,6 +276,11 @@ mod tests {
         }
         let p = [0.3, -1.2, 0.7];
         let (ours, theirs) = (system.evaluate(p), dense.evaluate(p));
+        assert_eq!(
+            ours,
+            nalgebra_products(&system, p),
+            "the same bits as nalgebra's"
+        );
         for (a, b) in ours.iter().zip(&theirs) {
             assert!((a.0 - b.0).abs() < 1e-13 && (a.2 - b.2).abs() < 1e-13);
             for j in 0..3 {

@@ -37,6 +37,7 @@ pub mod polish;
 mod poly;
 pub mod sampson;
 pub mod seven_point;
+mod simd;
 pub mod six_point_focal;
 mod sturm;
 pub mod types;

@@ -8,6 +8,7 @@
 //! is first rescaled by an exact power of two so that its largest entry lies
 //! in `[1, 2)`, which also keeps the products clear of overflow and underflow.
 
+use crate::simd::dispatch;
 use crate::Correspondences;
 use nalgebra::Matrix3;
 
@@ -146,26 +147,33 @@ pub fn symmetric_epipolar_distance(f: &Matrix3<f64>, p1: [f64; 2], p2: [f64; 2])
     ratio(e, e * e * (1.0 / g1 + 1.0 / g2), 1.0)
 }
 
-/// Squared Sampson distances (Eq. 23) of every correspondence to one `F`,
-/// written into `out`: `out[i] = e_i² / (a_i² + b_i² + c_i² + d_i²)` in px².
-/// Only the first `min(out.len(), points.len())` slots are written.
-///
-/// This is the hot loop of the preference matrix (Eq. 38): it allocates
-/// nothing, reads the four coordinate columns linearly and compiles to a
-/// branch-free, vectorised loop.
-///
-/// ```
-/// use geometry::{sampson_distances_squared, Correspondences};
-/// use nalgebra::Matrix3;
-/// let f = Matrix3::new(0.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0);
-/// let c = Correspondences::new(&[[0.0, 0.0], [5.0, 1.0]], &[[3.0, 0.0], [9.0, 3.0]]).unwrap();
-/// let mut out = vec![0.0; 2];
-/// sampson_distances_squared(&f, &c, &mut out);
-/// assert_eq!(out[0], 0.0);
-/// assert!((out[1] - 2.0).abs() < 1e-12);
-/// ```
-pub fn sampson_distances_squared(f: &Matrix3<f64>, points: &Correspondences, out: &mut [f64]) {
-    // A compare-and-blend: vectorises.
+dispatch! {
+    /// Squared Sampson distances (Eq. 23) of every correspondence to one `F`,
+    /// written into `out`: `out[i] = e_i² / (a_i² + b_i² + c_i² + d_i²)` in px².
+    /// Only the first `min(out.len(), points.len())` slots are written.
+    ///
+    /// This is the hot loop of the preference matrix (Eq. 38): it allocates
+    /// nothing, reads the four coordinate columns linearly and compiles to a
+    /// branch-free, vectorised loop.
+    ///
+    /// ```
+    /// use geometry::{sampson_distances_squared, Correspondences};
+    /// use nalgebra::Matrix3;
+    /// let f = Matrix3::new(0.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0);
+    /// let c = Correspondences::new(&[[0.0, 0.0], [5.0, 1.0]], &[[3.0, 0.0], [9.0, 3.0]]).unwrap();
+    /// let mut out = vec![0.0; 2];
+    /// sampson_distances_squared(&f, &c, &mut out);
+    /// assert_eq!(out[0], 0.0);
+    /// assert!((out[1] - 2.0).abs() < 1e-12);
+    /// ```
+    pub fn sampson_distances_squared(f: &Matrix3<f64>, points: &Correspondences, out: &mut [f64])
+        => distances_squared_kernel
+}
+
+/// The body of [`sampson_distances_squared`]: a compare-and-blend that
+/// vectorises.
+#[inline(always)]
+fn distances_squared_kernel(f: &Matrix3<f64>, points: &Correspondences, out: &mut [f64]) {
     batch_map(f, points, out, |e, g| ratio(e, e * e, g));
 }
 
@@ -246,74 +254,107 @@ impl SampsonModels {
     }
 }
 
-/// The correspondences within `thr2` px² of `F` (squared Sampson distance,
-/// Eq. 23, computed exactly as [`sampson_distance_squared`]): their indices,
-/// increasing, written into `out` (cleared first). The consensus set of
-/// RANSAC-style hypothesis scoring.
-///
-/// Gives up, returning `false`, once fewer than `at_least` correspondences
-/// can still be within the bound (tested every [`CONSENSUS_BLOCK`] matches;
-/// `out` then holds a partial set); `at_least = 0` never gives up. The
-/// answer and, when it is `true`, `out` do not depend on where it gave up.
-///
-/// ```
-/// use geometry::{sampson_consensus, Correspondences};
-/// use nalgebra::Matrix3;
-/// let f = Matrix3::new(0.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0);
-/// let c = Correspondences::new(&[[0.0, 0.0], [5.0, 1.0]], &[[3.0, 0.0], [9.0, 3.0]]).unwrap();
-/// let mut inliers = Vec::new();
-/// assert!(sampson_consensus(&f, &c, 1.0, 0, &mut inliers));
-/// assert_eq!(inliers, [0]);
-/// assert!(!sampson_consensus(&f, &c, 1.0, 2, &mut inliers));
-/// ```
-pub fn sampson_consensus(
+dispatch! {
+    /// The correspondences within `thr2` px² of `F` (squared Sampson distance,
+    /// Eq. 23, computed exactly as [`sampson_distance_squared`]): their indices,
+    /// increasing, written into `out` (cleared first). The consensus set of
+    /// RANSAC-style hypothesis scoring.
+    ///
+    /// Gives up, returning `false`, once fewer than `at_least` correspondences
+    /// can still be within the bound (tested every [`CONSENSUS_BLOCK`] matches;
+    /// `out` then holds a partial set); `at_least = 0` never gives up. The
+    /// answer and, when it is `true`, `out` do not depend on where it gave up.
+    ///
+    /// ```
+    /// use geometry::{sampson_consensus, Correspondences};
+    /// use nalgebra::Matrix3;
+    /// let f = Matrix3::new(0.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0);
+    /// let c = Correspondences::new(&[[0.0, 0.0], [5.0, 1.0]], &[[3.0, 0.0], [9.0, 3.0]]).unwrap();
+    /// let mut inliers = Vec::new();
+    /// assert!(sampson_consensus(&f, &c, 1.0, 0, &mut inliers));
+    /// assert_eq!(inliers, [0]);
+    /// assert!(!sampson_consensus(&f, &c, 1.0, 2, &mut inliers));
+    /// ```
+    pub fn sampson_consensus(
+        f: &Matrix3<f64>,
+        points: &Correspondences,
+        thr2: f64,
+        at_least: usize,
+        out: &mut Vec<usize>,
+    ) -> bool => consensus_kernel
+}
+
+/// The body of [`sampson_consensus`].
+#[inline(always)]
+fn consensus_kernel(
     f: &Matrix3<f64>,
     points: &Correspondences,
     thr2: f64,
     at_least: usize,
     out: &mut Vec<usize>,
 ) -> bool {
+    const B: usize = CONSENSUS_BLOCK;
     out.clear();
     let f = rescale_power_of_two(f);
     let (x1, y1, x2, y2) = points.columns();
     let n = points.len();
-    let mut d2 = [0.0; CONSENSUS_BLOCK];
-    for start in (0..n).step_by(CONSENSUS_BLOCK) {
+    let blocks = x1[..n]
+        .chunks(B)
+        .zip(y1[..n].chunks(B))
+        .zip(x2[..n].chunks(B).zip(y2[..n].chunks(B)));
+    let mut d2 = [0.0; B];
+    let mut kept = [0usize; B];
+    for (start, ((bx1, by1), (bx2, by2))) in (0..n).step_by(B).zip(blocks) {
         if out.len() + (n - start) < at_least {
             return false;
         }
-        let end = (start + CONSENSUS_BLOCK).min(n);
         // Distances of the block (a branch-free loop that vectorises),
-        // then the indices within the bound.
-        for (k, d) in (start..end).zip(d2.iter_mut()) {
-            let (e, g1, g2) = epipolar_terms(&f, [x1[k], y1[k]], [x2[k], y2[k]]);
+        // then the indices within the bound, written without a branch
+        // (`m ≤ k < B`, so the mask only spares a bounds check).
+        let points = bx1.iter().zip(by1).zip(bx2.iter().zip(by2));
+        for (d, ((&u1, &v1), (&u2, &v2))) in d2.iter_mut().zip(points) {
+            let (e, g1, g2) = epipolar_terms(&f, [u1, v1], [u2, v2]);
             *d = ratio(e, e * e, g1 + g2);
         }
-        out.extend((start..end).filter(|&k| d2[k - start] <= thr2));
+        let mut m = 0;
+        for (k, d) in d2[..bx1.len()].iter().enumerate() {
+            kept[m & (B - 1)] = start + k;
+            m += usize::from(*d <= thr2);
+        }
+        out.extend_from_slice(&kept[..m]);
     }
     out.len() >= at_least
 }
 
 /// Matches per block of [`sampson_consensus`]: distances are computed a
-/// block at a time, and the give-up test runs between blocks.
+/// block at a time, and the give-up test runs between blocks. A power of
+/// two (the kernel masks its indices with `CONSENSUS_BLOCK − 1`).
 const CONSENSUS_BLOCK: usize = 32;
+const _: () = assert!(CONSENSUS_BLOCK.is_power_of_two());
 
-/// Signed Sampson residuals `r_i = e_i / sqrt(a_i² + b_i² + c_i² + d_i²)`
-/// (square root of Eq. 23, with the sign of `e_i`) of every correspondence to
-/// one `F`, written into `out`; `r_i²` is the squared Sampson distance.
-/// These are the residuals whose median and MAD give the IRLS scale (Eq. 34).
-/// Only the first `min(out.len(), points.len())` slots are written.
-///
-/// ```
-/// use geometry::{sampson_residuals_signed, Correspondences};
-/// use nalgebra::Matrix3;
-/// let f = Matrix3::new(0.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0);
-/// let c = Correspondences::new(&[[5.0, 1.0], [5.0, 1.0]], &[[9.0, 3.0], [9.0, -1.0]]).unwrap();
-/// let mut r = vec![0.0; 2];
-/// sampson_residuals_signed(&f, &c, &mut r);
-/// assert!((r[0] + r[1]).abs() < 1e-12 && (r[0].abs() - 2f64.sqrt()).abs() < 1e-12);
-/// ```
-pub fn sampson_residuals_signed(f: &Matrix3<f64>, points: &Correspondences, out: &mut [f64]) {
+dispatch! {
+    /// Signed Sampson residuals `r_i = e_i / sqrt(a_i² + b_i² + c_i² + d_i²)`
+    /// (square root of Eq. 23, with the sign of `e_i`) of every correspondence to
+    /// one `F`, written into `out`; `r_i²` is the squared Sampson distance.
+    /// These are the residuals whose median and MAD give the IRLS scale (Eq. 34).
+    /// Only the first `min(out.len(), points.len())` slots are written.
+    ///
+    /// ```
+    /// use geometry::{sampson_residuals_signed, Correspondences};
+    /// use nalgebra::Matrix3;
+    /// let f = Matrix3::new(0.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0);
+    /// let c = Correspondences::new(&[[5.0, 1.0], [5.0, 1.0]], &[[9.0, 3.0], [9.0, -1.0]]).unwrap();
+    /// let mut r = vec![0.0; 2];
+    /// sampson_residuals_signed(&f, &c, &mut r);
+    /// assert!((r[0] + r[1]).abs() < 1e-12 && (r[0].abs() - 2f64.sqrt()).abs() < 1e-12);
+    /// ```
+    pub fn sampson_residuals_signed(f: &Matrix3<f64>, points: &Correspondences, out: &mut [f64])
+        => residuals_signed_kernel
+}
+
+/// The body of [`sampson_residuals_signed`].
+#[inline(always)]
+fn residuals_signed_kernel(f: &Matrix3<f64>, points: &Correspondences, out: &mut [f64]) {
     batch_map(f, points, out, |e, g| ratio(e, e, g.sqrt()));
 }
 

@@ -5,8 +5,9 @@
 //! bound, and a bracketed Newton iteration (bisection as safeguard)
 //! converges on each isolated root. Fixed-size arrays, no allocation.
 
-/// Largest degree handled.
-pub(crate) const MAX_DEGREE: usize = 16;
+/// Largest degree handled (the 5-point solver's `det B(z)`); the
+/// sequence and the roots live in arrays of this size.
+pub(crate) const MAX_DEGREE: usize = 10;
 
 /// Bisection depth at which a sub-interval that still holds several roots
 /// (a cluster below `2⁻⁶⁴` of the root bound) gives up and reports its
@@ -185,35 +186,43 @@ pub(crate) fn sturm_roots(coeffs: &[f64]) -> Option<Roots> {
     // Roots lie in (−bound, bound); the interval is widened slightly so
     // that none sits on an end point.
     let (lo, hi) = (-1.01 * bound - 1e-300, 1.01 * bound + 1e-300);
-    // Intervals (lo, hi, V(lo), V(hi), depth); left halves processed first.
-    let mut stack = [(0.0, 0.0, 0, 0, 0); 2 * MAX_DEPTH + 2];
-    stack[0] = (lo, hi, sturm.variations(lo), sturm.variations(hi), 0);
-    let mut top = 1;
-    while top > 0 {
-        top -= 1;
-        let (a, b, va, vb, depth) = stack[top];
-        let count = va.saturating_sub(vb);
-        if count == 0 {
-            continue;
-        }
-        if count == 1 {
-            let (pa, pb) = (p.eval(a), p.eval(b));
-            if pa * pb < 0.0 {
-                roots.push(bracketed_newton(&p, a, b, pa));
-                continue;
-            }
-        }
-        let mid = 0.5 * (a + b);
-        if depth >= MAX_DEPTH || mid <= a || mid >= b {
-            roots.push(mid);
-            continue;
-        }
-        let vm = sturm.variations(mid);
-        stack[top] = (mid, b, vm, vb, depth + 1);
-        stack[top + 1] = (a, mid, va, vm, depth + 1);
-        top += 2;
-    }
+    let ends = (sturm.variations(lo), sturm.variations(hi));
+    isolate(&p, &sturm, (lo, hi), ends, 0, &mut roots);
     Some(roots)
+}
+
+/// The distinct real roots of `p` in `(a, b)`, where its Sturm sequence
+/// has `va` and `vb` sign changes, pushed onto `roots` in ascending order:
+/// bracketed Newton on an interval with one root and a sign change,
+/// bisection (left half first) otherwise, the midpoint once at
+/// [`MAX_DEPTH`] or when the interval can no longer be halved.
+fn isolate(
+    p: &Poly,
+    sturm: &Sturm,
+    (a, b): (f64, f64),
+    (va, vb): (usize, usize),
+    depth: usize,
+    roots: &mut Roots,
+) {
+    let count = va.saturating_sub(vb);
+    if count == 0 {
+        return;
+    }
+    if count == 1 {
+        let (pa, pb) = (p.eval(a), p.eval(b));
+        if pa * pb < 0.0 {
+            roots.push(bracketed_newton(p, a, b, pa));
+            return;
+        }
+    }
+    let mid = 0.5 * (a + b);
+    if depth >= MAX_DEPTH || mid <= a || mid >= b {
+        roots.push(mid);
+        return;
+    }
+    let vm = sturm.variations(mid);
+    isolate(p, sturm, (a, mid), (va, vm), depth + 1, roots);
+    isolate(p, sturm, (mid, b), (vm, vb), depth + 1, roots);
 }
 
 /// The root of `p` in `(a, b)` with `p(a) p(b) < 0` (`pa = p(a)`): Newton
