@@ -10,7 +10,7 @@ use crate::{MinimalSolutions, MinimalSolver, Params, Sampling, SizeRule};
 ///   merged clusters, Table 1 values);
 /// * `thesis`: [`Params::thesis`], the thesis text's semi-calibrated
 ///   Algorithm 1;
-/// * `fast`: [`Params::fast`], M 750, one IRLS iteration, the five-point
+/// * `fast`: [`Params::fast`], M 600, one IRLS iteration, the five-point
 ///   roots scored before their polish, uniform and localized samples in
 ///   turn, and 200 matches clustered, the others joined to the nearest
 ///   cluster: seven to twenty times cheaper than `default`
@@ -102,13 +102,13 @@ impl Params {
     ///   cheapest within 2 points of the default's ME);
     /// * uniform and localized samples in turn (`sampling = "mixed"`,
     ///   lower ME than uniform on both splits);
-    /// * M 750 (of 500, 750 and 1000, the cheapest within 2 points of the
-    ///   default's ME).
+    /// * M 600 (of 500, 600, 650, 750 and 1000, the cheapest within 2
+    ///   points of the default's ME).
     pub fn fast() -> Self {
         Self {
             minimal_solver: MinimalSolver::FivePoint,
             minimal_solutions: MinimalSolutions::BestThenPolish,
-            num_samples: 750,
+            num_samples: 600,
             irls_iters: 1,
             cluster_subset: 200,
             sampling: Sampling::Mixed,
