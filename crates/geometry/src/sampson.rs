@@ -219,38 +219,55 @@ fn batch_map(
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct SampsonModels {
-    /// `entries[j]`: the row-major entries of model j, rescaled.
-    entries: Vec<[f64; 9]>,
+    /// `entries[k][j]`: row-major entry k of model j, rescaled (one column
+    /// per entry, so that a loop over the models reads each linearly).
+    entries: [Vec<f64>; 9],
 }
 
 impl SampsonModels {
     /// The models `fs`, in that order.
     pub fn new(fs: &[Matrix3<f64>]) -> Self {
+        let rows: Vec<[f64; 9]> = fs
+            .iter()
+            .map(|f| row_major(&rescale_power_of_two(f)))
+            .collect();
         Self {
-            entries: fs
-                .iter()
-                .map(|f| row_major(&rescale_power_of_two(f)))
-                .collect(),
+            entries: std::array::from_fn(|k| rows.iter().map(|row| row[k]).collect()),
         }
     }
 
     /// Number of models.
     pub fn len(&self) -> usize {
-        self.entries.len()
+        self.entries[0].len()
     }
 
     /// Whether there are no models.
     pub fn is_empty(&self) -> bool {
-        self.entries.is_empty()
+        self.entries[0].is_empty()
     }
 
     /// `out[j]`: the squared Sampson distance (Eq. 23, px²) of the match
     /// `p1 ↔ p2` to model j, for the first `min(out.len(), len())` models.
     pub fn distances_squared(&self, p1: [f64; 2], p2: [f64; 2], out: &mut [f64]) {
-        for (r, f) in out.iter_mut().zip(&self.entries) {
-            let (e, g) = gradient_terms(lines_of_entries(f, p1[0], p1[1], p2[0], p2[1]));
-            *r = ratio(e, e * e, g);
-        }
+        models_distances_squared(self, p1, p2, out);
+    }
+}
+
+dispatch! {
+    /// [`models_kernel`] in the build [`crate::simd::avx2`] chooses.
+    fn models_distances_squared(models: &SampsonModels, p1: [f64; 2], p2: [f64; 2], out: &mut [f64])
+        => models_kernel
+}
+
+/// The body of [`SampsonModels::distances_squared`].
+#[inline(always)]
+fn models_kernel(models: &SampsonModels, p1: [f64; 2], p2: [f64; 2], out: &mut [f64]) {
+    let m = out.len().min(models.len());
+    let e = models.entries.each_ref().map(|column| &column[..m]);
+    for (j, r) in out[..m].iter_mut().enumerate() {
+        let f = e.map(|column| column[j]);
+        let (e, g) = gradient_terms(lines_of_entries(&f, p1[0], p1[1], p2[0], p2[1]));
+        *r = ratio(e, e * e, g);
     }
 }
 

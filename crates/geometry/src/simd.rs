@@ -9,7 +9,7 @@
 //!
 //! The kernels: [`crate::sampson_consensus`], the batch Sampson
 //! distances ([`crate::sampson_distances_squared`],
-//! [`crate::sampson_residuals_signed`]), the weighted moments of the
+//! [`crate::sampson_residuals_signed`], [`crate::SampsonModels`]), the weighted moments of the
 //! normalised 8-point and the evaluation of the ten 5-point constraints
 //! with their Jacobian (the root polish).
 #![allow(unsafe_code)]
@@ -88,7 +88,7 @@ mod tests {
     use super::*;
     use crate::{
         eight_point_weighted, sampson_consensus, sampson_distances_squared,
-        sampson_residuals_signed, Correspondences, FivePointRoots,
+        sampson_residuals_signed, Correspondences, FivePointRoots, SampsonModels,
     };
     use nalgebra::{Matrix3, Vector3};
     use rand::{Rng, SeedableRng};
@@ -138,6 +138,12 @@ mod tests {
         out.extend(bits(d.iter().copied()));
         sampson_residuals_signed(&f, &points, &mut d);
         out.extend(bits(d.iter().copied()));
+        let models = SampsonModels::new(&[f, f.transpose(), f * 3.0 + Matrix3::identity()]);
+        let mut row = [0.0; 3];
+        for i in 0..n {
+            models.distances_squared(points.point1(i), points.point2(i), &mut row);
+            out.extend(bits(row));
+        }
         let weights: Vec<f64> = (0..n).map(|_| rng.gen_range(0.0..1.0)).collect();
         out.extend(bits(
             eight_point_weighted(&points, &weights)
