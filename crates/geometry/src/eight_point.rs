@@ -52,6 +52,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use crate::linalg::{jacobi_svd, smallest_eigenpair, symmetric_eigenvalues, GivensQr9};
+use crate::simd::dispatch;
 use crate::{Correspondences, GeometryError};
 use nalgebra::{Matrix3, SVector};
 use std::cmp::Ordering;
@@ -438,37 +439,13 @@ struct NormalizedSolution {
     t2: Matrix3<f64>,
 }
 
-/// Hartley normalisation, normal matrix and smallest eigenvector: the part
-/// of [`fit_normalized`] before rank 2 and denormalisation.
-fn solve_normalized<I>(
-    points: &Correspondences,
-    items: I,
-) -> Result<NormalizedSolution, GeometryError>
-where
-    I: Iterator<Item = (usize, f64)> + Clone,
-{
-    /// [`solve_normalized_kernel`] compiled for AVX2 (the weighted moments
-    /// are 36 independent sums per match: four lanes instead of two).
-    ///
-    /// # Safety
-    /// The CPU must support AVX2.
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2")]
-    unsafe fn build_avx2<I>(
-        points: &Correspondences,
-        items: I,
-    ) -> Result<NormalizedSolution, GeometryError>
-    where
-        I: Iterator<Item = (usize, f64)> + Clone,
-    {
-        solve_normalized_kernel(points, items)
-    }
-    #[cfg(target_arch = "x86_64")]
-    if crate::simd::avx2() {
-        // SAFETY: `avx2()` checked that the CPU supports AVX2.
-        return unsafe { build_avx2(points, items) };
-    }
-    solve_normalized_kernel(points, items)
+dispatch! {
+    /// Hartley normalisation, normal matrix and smallest eigenvector: the part
+    /// of [`fit_normalized`] before rank 2 and denormalisation.
+    fn solve_normalized<I>(points: &Correspondences, items: I)
+        -> Result<NormalizedSolution, GeometryError>
+        where [I: Iterator<Item = (usize, f64)> + Clone]
+        => solve_normalized_kernel
 }
 
 /// The body of [`solve_normalized`], in the build [`crate::simd::avx2`]

@@ -58,18 +58,25 @@ pub(crate) fn with_portable<T>(run: impl FnOnce() -> T) -> T {
 
 /// Defines `$name`, which runs `$kernel` (an `#[inline(always)]` function
 /// with the same parameters) compiled for AVX2 when [`avx2`] says the CPU
-/// has it, and its baseline build otherwise.
+/// has it, and its baseline build otherwise. Type parameters and their
+/// bounds go in `<…>` and `where […]`.
 macro_rules! dispatch {
-    ($(#[$meta:meta])* $vis:vis fn $name:ident($($arg:ident: $ty:ty),* $(,)?) $(-> $ret:ty)? => $kernel:path) => {
+    (
+        $(#[$meta:meta])*
+        $vis:vis fn $name:ident $(<$($generic:ident),*>)? ($($arg:ident: $ty:ty),* $(,)?)
+            $(-> $ret:ty)? $(where [$($bound:tt)*])? => $kernel:path
+    ) => {
         $(#[$meta])*
-        $vis fn $name($($arg: $ty),*) $(-> $ret)? {
+        $vis fn $name $(<$($generic),*>)? ($($arg: $ty),*) $(-> $ret)? $(where $($bound)*)? {
             /// The kernel compiled for AVX2.
             ///
             /// # Safety
             /// The CPU must support AVX2.
             #[cfg(target_arch = "x86_64")]
             #[target_feature(enable = "avx2")]
-            unsafe fn build_avx2($($arg: $ty),*) $(-> $ret)? {
+            unsafe fn build_avx2 $(<$($generic),*>)? ($($arg: $ty),*) $(-> $ret)?
+                $(where $($bound)*)?
+            {
                 $kernel($($arg),*)
             }
             #[cfg(target_arch = "x86_64")]
