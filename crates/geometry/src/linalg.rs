@@ -239,7 +239,8 @@ pub(crate) fn symmetric_eigenvalues(a: &[[f64; 9]; 9]) -> Option<[f64; 9]> {
     }
 }
 
-/// Householder reduction of the symmetric `m` to tridiagonal form: the
+/// Householder reduction of the exactly symmetric `m` (what the callers
+/// build, entry `(c, r)` copied from `(r, c)`) to tridiagonal form: the
 /// diagonal `d` and the sub-diagonal `e` (`e[i]` couples `d[i]` and
 /// `d[i + 1]`, `e[8] = 0`). For column k, m[k+1.., k] is reflected onto a
 /// multiple of e1.
@@ -268,23 +269,32 @@ fn tridiagonalize(mut m: [[f64; 9]; 9]) -> ([f64; 9], [f64; 9]) {
             continue;
         }
         let beta = 2.0 / vtv;
-        // p = β M v, w = p − (β pᵀv / 2) v, M ← M − v wᵀ − w vᵀ.
+        // p = β M v, w = p − (β pᵀv / 2) v, M ← M − v wᵀ − w vᵀ. M stays
+        // exactly symmetric (both products of an entry are added in either
+        // order, and a + b = b + a), so row j serves as column j: each
+        // p_i sums m_ij v_j over j = k+1, k+2, … in that order, as a row
+        // by row loop would, while the loops over i run the full width.
+        let mut sums = [0.0; N];
+        for j in k + 1..N {
+            for (sum, &m_ji) in sums.iter_mut().zip(&m[j]) {
+                *sum += m_ji * v[j];
+            }
+        }
         let mut p = [0.0; N];
         for i in k + 1..N {
-            let mut sum = 0.0;
-            for j in k + 1..N {
-                sum += m[i][j] * v[j];
-            }
-            p[i] = beta * sum;
+            p[i] = beta * sums[i];
         }
         let ptv: f64 = (k + 1..N).map(|i| p[i] * v[i]).sum();
         let kappa = 0.5 * beta * ptv;
         for i in k + 1..N {
             p[i] -= kappa * v[i];
         }
+        // Entries of the finished columns (j ≤ k) see v_j = p_j = 0 and
+        // are left as they are (x − 0 = x); they are not read again.
         for i in k + 1..N {
-            for j in k + 1..N {
-                m[i][j] -= v[i] * p[j] + p[i] * v[j];
+            let (vi, pi) = (v[i], p[i]);
+            for ((m_ij, &pj), &vj) in m[i].iter_mut().zip(&p).zip(&v) {
+                *m_ij -= vi * pj + pi * vj;
             }
         }
     }
@@ -441,6 +451,8 @@ impl GivensQr9 {
 mod tests {
     use super::*;
     use nalgebra::{Matrix3, Rotation3, SMatrix, Vector3};
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
 
     /// `Q diag(λ) Qᵀ` for a fixed orthogonal Q (from a QR of a dense matrix).
     fn spectral(lambda: [f64; 9]) -> [[f64; 9]; 9] {
@@ -482,6 +494,82 @@ mod tests {
         }
         let rel = (r.transpose() * r - gram).norm() / gram.norm();
         assert!(rel < 1e-14, "relative error {rel}");
+    }
+
+    /// The Householder reduction as written row by row over the trailing
+    /// block (the textbook loops): the reference for [`tridiagonalize`].
+    fn tridiagonalize_rowwise(mut m: [[f64; 9]; 9]) -> ([f64; 9], [f64; 9]) {
+        const N: usize = 9;
+        let (mut d, mut e) = ([0.0; N], [0.0; N]);
+        for k in 0..N - 2 {
+            let mut v = [0.0; N];
+            let mut norm2 = 0.0;
+            for i in k + 1..N {
+                v[i] = m[i][k];
+                norm2 += v[i] * v[i];
+            }
+            let norm = norm2.sqrt();
+            d[k] = m[k][k];
+            if norm == 0.0 {
+                continue;
+            }
+            let alpha = if v[k + 1] > 0.0 { -norm } else { norm };
+            e[k] = alpha;
+            v[k + 1] -= alpha;
+            let vtv = norm2 - 2.0 * alpha * m[k + 1][k] + alpha * alpha;
+            if vtv == 0.0 {
+                continue;
+            }
+            let beta = 2.0 / vtv;
+            let mut p = [0.0; N];
+            for i in k + 1..N {
+                let mut sum = 0.0;
+                for j in k + 1..N {
+                    sum += m[i][j] * v[j];
+                }
+                p[i] = beta * sum;
+            }
+            let ptv: f64 = (k + 1..N).map(|i| p[i] * v[i]).sum();
+            let kappa = 0.5 * beta * ptv;
+            for i in k + 1..N {
+                p[i] -= kappa * v[i];
+            }
+            for i in k + 1..N {
+                for j in k + 1..N {
+                    m[i][j] -= v[i] * p[j] + p[i] * v[j];
+                }
+            }
+        }
+        d[N - 2] = m[N - 2][N - 2];
+        d[N - 1] = m[N - 1][N - 1];
+        e[N - 2] = m[N - 1][N - 2];
+        (d, e)
+    }
+
+    #[test]
+    fn tridiagonalize_has_the_bits_of_the_rowwise_loops() {
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        for trial in 0..200 {
+            // Normal matrices XᵀX of random rows, as the 8-point builds
+            // them (upper triangle mirrored), some with a zero column.
+            let mut a = [[0.0; 9]; 9];
+            for _ in 0..12 {
+                let mut row: [f64; 9] = std::array::from_fn(|_| rng.gen_range(-3.0..3.0));
+                if trial % 10 == 0 {
+                    row[4] = 0.0;
+                }
+                for r in 0..9 {
+                    for c in r..9 {
+                        a[r][c] += row[r] * row[c];
+                        a[c][r] = a[r][c];
+                    }
+                }
+            }
+            let (d, e) = tridiagonalize(a);
+            let (d0, e0) = tridiagonalize_rowwise(a);
+            assert_eq!(d.map(f64::to_bits), d0.map(f64::to_bits), "trial {trial}");
+            assert_eq!(e.map(f64::to_bits), e0.map(f64::to_bits), "trial {trial}");
+        }
     }
 
     #[test]

@@ -315,6 +315,8 @@ fn consensus_kernel(
     let f = rescale_power_of_two(f);
     let (x1, y1, x2, y2) = points.columns();
     let n = points.len();
+    // One allocation at most, instead of growing block by block.
+    out.reserve(n);
     let blocks = x1[..n]
         .chunks(B)
         .zip(y1[..n].chunks(B))

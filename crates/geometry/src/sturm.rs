@@ -5,6 +5,8 @@
 //! bound, and a bracketed Newton iteration (bisection as safeguard)
 //! converges on each isolated root. Fixed-size arrays, no allocation.
 
+use crate::simd::dispatch;
+
 /// Largest degree handled (the 5-point solver's `det B(z)`); the
 /// sequence and the roots live in arrays of this size.
 pub(crate) const MAX_DEGREE: usize = 10;
@@ -38,7 +40,8 @@ impl Roots {
     }
 }
 
-/// A polynomial `Σ c_k tᵏ` of degree `degree` (`c[degree] ≠ 0`).
+/// A polynomial `Σ c_k tᵏ` of degree `degree` (`c[degree] ≠ 0`, and
+/// `c[k] = 0` above it).
 #[derive(Debug, Clone, Copy)]
 struct Poly {
     c: [f64; MAX_DEGREE + 1],
@@ -46,16 +49,19 @@ struct Poly {
 }
 
 impl Poly {
+    /// The value at `t` (Horner). The loop runs over all
+    /// `MAX_DEGREE + 1` coefficients (a fixed count, unrolled): the zeros
+    /// above the degree keep the value at (signed) zero, and
+    /// `±0 · t + c = c` exactly, so the bits are those of Horner's rule
+    /// from the leading coefficient.
     fn eval(&self, t: f64) -> f64 {
-        self.c[..=self.degree]
-            .iter()
-            .rev()
-            .fold(0.0, |acc, &c| acc * t + c)
+        self.c.iter().rev().fold(0.0, |acc, &c| acc * t + c)
     }
 
-    /// The value and the derivative at `t` (Horner).
+    /// The value and the derivative at `t` (Horner; all coefficients, as
+    /// in [`Poly::eval`]).
     fn eval_with_derivative(&self, t: f64) -> (f64, f64) {
-        self.c[..=self.degree]
+        self.c
             .iter()
             .rev()
             .fold((0.0, 0.0), |(p, dp), &c| (p * t + c, dp * t + p))
@@ -69,10 +75,17 @@ impl Poly {
     }
 }
 
+/// Lanes of [`Sturm::table`]: the at most `MAX_DEGREE + 1` polynomials of
+/// a sequence, padded to a multiple of four.
+const LANES: usize = (MAX_DEGREE + 1).div_ceil(4) * 4;
+
 /// The Sturm sequence `p₀ = p, p₁ = p', p_{k+1} = −rem(p_{k−1}, p_k)`, each
 /// scaled to a leading coefficient of magnitude 1.
 struct Sturm {
-    seq: [Poly; MAX_DEGREE + 1],
+    /// Coefficient-major: `table[k][i]` is the coefficient of `tᵏ` in
+    /// `p_i`, zero above its degree and in the lanes past `len`, so that
+    /// one Horner loop evaluates the whole sequence lane by lane.
+    table: [[f64; LANES]; MAX_DEGREE + 1],
     len: usize,
 }
 
@@ -101,23 +114,56 @@ impl Sturm {
             seq[len] = next;
             len += 1;
         }
-        Some(Self { seq, len })
+        let mut table = [[0.0; LANES]; MAX_DEGREE + 1];
+        for (i, p) in seq[..len].iter().enumerate() {
+            for (k, &c) in p.c[..=p.degree].iter().enumerate() {
+                table[k][i] = c;
+            }
+        }
+        Some(Self { table, len })
     }
 
     /// Sign changes of the sequence at `t` (zeros skipped).
     fn variations(&self, t: f64) -> usize {
-        count_changes(self.seq[..self.len].iter().map(|p| p.eval(t)))
+        count_changes(self.values(t)[..self.len].iter().copied())
+    }
+
+    /// `p_i(t)` in lane `i`: Horner's rule in every lane from degree
+    /// `MAX_DEGREE` down. The zero coefficients above a polynomial's degree
+    /// leave its lane at (signed) zero until its leading coefficient, and
+    /// `±0 · t + c = c` exactly, so each value has the bits of
+    /// [`Poly::eval`].
+    fn values(&self, t: f64) -> [f64; LANES] {
+        sequence_values(&self.table, t)
     }
 }
 
+dispatch! {
+    /// The body of [`Sturm::values`] (four lanes per instruction in the
+    /// AVX2 build).
+    fn sequence_values(table: &[[f64; LANES]; MAX_DEGREE + 1], t: f64) -> [f64; LANES]
+        => sequence_values_kernel
+}
+
+#[inline(always)]
+fn sequence_values_kernel(table: &[[f64; LANES]; MAX_DEGREE + 1], t: f64) -> [f64; LANES] {
+    let mut values = [0.0; LANES];
+    for row in table.iter().rev() {
+        for (v, &c) in values.iter_mut().zip(row) {
+            *v = *v * t + c;
+        }
+    }
+    values
+}
+
+/// Sign changes along `values`, zeros skipped (without a branch: a zero
+/// neither counts against the last non-zero value nor replaces it).
 fn count_changes(values: impl Iterator<Item = f64>) -> usize {
     let mut last = 0.0;
     let mut changes = 0;
-    for v in values.filter(|v| *v != 0.0) {
-        if last * v < 0.0 {
-            changes += 1;
-        }
-        last = v;
+    for v in values {
+        changes += usize::from(last * v < 0.0);
+        last = if v != 0.0 { v } else { last };
     }
     changes
 }
@@ -299,6 +345,75 @@ mod tests {
         // A trailing zero leading coefficient lowers the degree.
         let got = sturm_roots(&[-1.0, 1.0, 0.0]).unwrap();
         assert_eq!(got.as_slice(), &[1.0]);
+    }
+
+    /// The lane-wise evaluation of the whole sequence (both builds) and
+    /// the fixed-length evaluation of one polynomial give Horner's rule
+    /// from the leading coefficient bit for bit.
+    #[test]
+    fn table_evaluation_equals_horner_per_polynomial() {
+        let coeffs: Vec<f64> = from_roots(&[-7.5, -3.0, -1.2, -0.4, 0.05, 0.3, 1.1, 2.5, 4.0, 9.0])
+            .iter()
+            .map(|c| c * 3.7)
+            .collect();
+        let mut p = Poly {
+            c: [0.0; MAX_DEGREE + 1],
+            degree: MAX_DEGREE,
+        };
+        p.c.copy_from_slice(&coeffs);
+        let sturm = Sturm::new(p.normalised()).unwrap();
+        let polys: Vec<Poly> = (0..sturm.len)
+            .map(|i| {
+                let degree = (0..=MAX_DEGREE)
+                    .rev()
+                    .find(|&k| sturm.table[k][i] != 0.0)
+                    .unwrap();
+                let mut q = Poly {
+                    c: [0.0; MAX_DEGREE + 1],
+                    degree,
+                };
+                (0..=degree).for_each(|k| q.c[k] = sturm.table[k][i]);
+                q
+            })
+            .collect();
+        assert_eq!(polys.len(), MAX_DEGREE + 1);
+        for t in [-9.3, -7.5, -2.0, -0.4, -1e-3, 0.0, 0.3, 1.7, 4.0, 11.0] {
+            // Horner's rule from the leading coefficient, value and derivative.
+            let horner = |q: &Poly| {
+                q.c[..=q.degree]
+                    .iter()
+                    .rev()
+                    .fold((0.0, 0.0), |(v, dv): (f64, f64), &c| {
+                        (v * t + c, dv * t + v)
+                    })
+            };
+            let portable = crate::simd::with_portable(|| sturm.values(t));
+            for values in [sturm.values(t), portable] {
+                for (i, q) in polys.iter().enumerate() {
+                    assert_eq!(values[i].to_bits(), horner(q).0.to_bits(), "p_{i}({t})");
+                }
+            }
+            for q in &polys {
+                let (v, dv) = q.eval_with_derivative(t);
+                assert_eq!(
+                    (v.to_bits(), dv.to_bits()),
+                    (horner(q).0.to_bits(), horner(q).1.to_bits())
+                );
+                assert_eq!(q.eval(t).to_bits(), v.to_bits());
+            }
+            // Sign changes counted the plain way: zeros dropped first.
+            let nonzero: Vec<f64> = polys
+                .iter()
+                .map(|q| q.eval(t))
+                .filter(|v| *v != 0.0)
+                .collect();
+            let direct = nonzero.windows(2).filter(|w| w[0] * w[1] < 0.0).count();
+            assert_eq!(sturm.variations(t), direct, "t = {t}");
+            assert_eq!(
+                count_changes([0.0, 2.0, 0.0, -1.0, 0.0, -3.0, 4.0].into_iter()),
+                2
+            );
+        }
     }
 
     #[test]

@@ -137,6 +137,56 @@ proptest! {
     }
 }
 
+/// Thresholds at a match's own distance and one float either side (where
+/// the consensus test cannot decide without the division), zero, huge and
+/// NaN thresholds, and an F whose gradient vanishes: the consensus set is
+/// still the naive filter of the single-point distances.
+#[test]
+fn consensus_equals_the_naive_filter_at_the_threshold_and_its_limits() {
+    use rand::Rng;
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    let n = 300;
+    let p1: Vec<[f64; 2]> = (0..n)
+        .map(|_| [rng.gen_range(-500.0..500.0), rng.gen_range(-400.0..400.0)])
+        .collect();
+    let p2: Vec<[f64; 2]> = p1
+        .iter()
+        .map(|p| {
+            [
+                p[0] + 9.0 + rng.gen_range(-4.0..4.0),
+                p[1] + rng.gen_range(-4.0..4.0),
+            ]
+        })
+        .collect();
+    let c = Correspondences::new(&p1, &p2).unwrap();
+    let translation = Matrix3::new(0.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0)
+        + Matrix3::from_fn(|_, _| rng.gen_range(-1e-4..1e-4));
+    // Gradient zero wherever x1 and x2 sit at the origin of this F's lines.
+    let degenerate = Matrix3::new(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0);
+    let mut thresholds = vec![
+        0.0,
+        f64::MIN_POSITIVE,
+        1e-200,
+        1e200,
+        f64::INFINITY,
+        f64::NAN,
+    ];
+    for i in 0..n {
+        let d = sampson_distance_squared(&translation, p1[i], p2[i]);
+        thresholds.extend((-2..=2).map(|ulps| f64::from_bits((d.to_bits() as i64 + ulps) as u64)));
+    }
+    for f in [translation, degenerate] {
+        for &thr in &thresholds {
+            let naive: Vec<usize> = (0..n)
+                .filter(|&i| sampson_distance_squared(&f, p1[i], p2[i]) <= thr)
+                .collect();
+            let mut got = Vec::new();
+            sampson_consensus(&f, &c, thr, 0, &mut got);
+            assert_eq!(got, naive, "thr {thr:e}");
+        }
+    }
+}
+
 #[test]
 fn sampson_distance_is_the_distance_to_the_epipolar_line_for_a_translation() {
     // F = [t]x, t = (1, 0, 0): x2ᵀ F x1 = y1 - y2, a² + b² = 1, c² + d² = 1.
