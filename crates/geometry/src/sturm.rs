@@ -409,11 +409,11 @@ mod tests {
                 .collect();
             let direct = nonzero.windows(2).filter(|w| w[0] * w[1] < 0.0).count();
             assert_eq!(sturm.variations(t), direct, "t = {t}");
-            assert_eq!(
-                count_changes([0.0, 2.0, 0.0, -1.0, 0.0, -3.0, 4.0].into_iter()),
-                2
-            );
         }
+        assert_eq!(
+            count_changes([0.0, 2.0, 0.0, -1.0, 0.0, -3.0, 4.0].into_iter()),
+            2
+        );
     }
 
     #[test]

@@ -137,18 +137,17 @@ proptest! {
     }
 }
 
-/// Thresholds at a match's own distance and one float either side (where
-/// the consensus test cannot decide without the division), zero, huge and
-/// NaN thresholds, and an F whose gradient vanishes: the consensus set is
-/// still the naive filter of the single-point distances.
+/// Thresholds at a match's own distance and up to two floats either side
+/// (where a test that rounds differently from the division would flip),
+/// zero, tiny, huge, infinite and NaN thresholds, and an F whose gradient
+/// vanishes: the consensus set is the naive filter of the single-point
+/// distances.
 #[test]
 fn consensus_equals_the_naive_filter_at_the_threshold_and_its_limits() {
     use rand::Rng;
     let mut rng = ChaCha8Rng::seed_from_u64(11);
     let n = 300;
-    let p1: Vec<[f64; 2]> = (0..n)
-        .map(|_| [rng.gen_range(-500.0..500.0), rng.gen_range(-400.0..400.0)])
-        .collect();
+    let p1: Vec<[f64; 2]> = (0..n).map(|_| common::random_pixel(&mut rng)).collect();
     let p2: Vec<[f64; 2]> = p1
         .iter()
         .map(|p| {
