@@ -27,6 +27,7 @@
 
 use crate::eight_point::finish;
 use crate::essential_system::EssentialSystem;
+use crate::lu::lu_solve_template;
 use crate::minimal::{
     check_sample_size, epipolar_row, is_duplicate, matrix_from_row_major, null_basis,
 };
@@ -216,18 +217,16 @@ fn unit_bearings(
 }
 
 /// `B(z)` from the 10 × 20 coefficient matrix: LU elimination of the first
-/// ten columns, then `⟨x²z⟩ − z⟨x²⟩`, `⟨y²z⟩ − z⟨y²⟩`, `⟨xyz⟩ − z⟨xy⟩`
+/// ten columns ([`lu_solve_template`], the other ten in columns 10–19 of its
+/// answer), then `⟨x²z⟩ − z⟨x²⟩`, `⟨y²z⟩ − z⟨y²⟩`, `⟨xyz⟩ − z⟨xy⟩`
 /// (Nistér 2004, §3.2). Columns 10–19 are `xz², xz, x, yz², yz, y, z³, z²,
 /// z, 1`.
 fn hidden_variable_matrix(
     coefficients: &SMatrix<f64, 10, 20>,
 ) -> Result<HiddenMatrix, GeometryError> {
-    let left = coefficients.fixed_view::<10, 10>(0, 0).into_owned();
-    let right = coefficients.fixed_view::<10, 10>(0, 10).into_owned();
-    let b = left
-        .lu()
-        .solve(&right)
-        .filter(|b| b.iter().all(|v| v.is_finite()))
+    let rows = std::array::from_fn(|r| std::array::from_fn(|c| coefficients[(r, c)]));
+    let b = lu_solve_template(rows)
+        .filter(|b| b.iter().all(|row| row[10..].iter().all(|v| v.is_finite())))
         .ok_or(GeometryError::Degenerate(
             "5-point: singular elimination template",
         ))?;
@@ -237,8 +236,8 @@ fn hidden_variable_matrix(
             let mut p = [0.0; 5];
             for k in 0..len {
                 // Column first + k holds the power len − 1 − k of z.
-                p[len - 1 - k] += b[(with_z, first + k)];
-                p[len - k] -= b[(without, first + k)];
+                p[len - 1 - k] += b[with_z][10 + first + k];
+                p[len - k] -= b[without][10 + first + k];
             }
             p
         };

@@ -31,6 +31,7 @@ mod essential_system;
 pub mod five_point;
 pub mod irls;
 mod linalg;
+mod lu;
 mod mad;
 mod minimal;
 pub mod polish;
