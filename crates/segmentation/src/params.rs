@@ -112,10 +112,11 @@ pub struct Params {
     /// `eight-point`).
     pub minimal_solver: MinimalSolver,
     /// Which solutions of a minimal sample become hypotheses: `best` (most
-    /// matches within `thr_px`), `all`, or `best-then-polish` (`best`
+    /// matches within `thr_px`), `all`, `best-then-polish` (`best`
     /// scored on the five-point roots before their polish, the winner
-    /// alone polished). Ignored by `eight-point`, which has one. Default
-    /// `best`.
+    /// alone polished) or `best-unpolished` (the winner left unpolished,
+    /// with the consensus set it was scored with). Ignored by
+    /// `eight-point`, which has one. Default `best`.
     pub minimal_solutions: MinimalSolutions,
     /// How the matches of a minimal sample are drawn (step 1): `uniform`
     /// (the thesis) or `localized` (the first uniformly, the others among

@@ -91,6 +91,12 @@ param_enum! {
         /// (a few 1e-6, relative) or a match lies that close to `thr_px`.
         /// The other solvers behave as with `best`.
         BestThenPolish,
+        /// As `best-then-polish` without the polish: the winning five-point
+        /// root as the Sturm sequence and its Newton steps give it (a few
+        /// 1e-6 from its polish, relative) and the consensus set it was
+        /// scored with. Refinement then refits it. The other solvers behave
+        /// as with `best`.
+        BestUnpolished,
     }
 }
 

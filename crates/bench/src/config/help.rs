@@ -54,6 +54,8 @@ EXPERIMENT FILE (TOML)
   minimal_solutions = \"best\"   best (most matches within thr_px) | all
                                | best-then-polish (best, five-point roots
                                scored before their polish: faster)
+                               | best-unpolished (as best-then-polish,
+                               the winner left unpolished)
   sampling = \"uniform\"        uniform | localized (the others among the first
                                match's nearest in image 1: NAPSAC) | mixed
                                (the two in turn)
