@@ -76,7 +76,7 @@ pub(crate) fn solve_and_choose(
             }
             MinimalSolutions::BestUnpolished => {
                 return best_unpolished(subset, points, focal, thr_px)
-                    .map(|(_, _, chosen)| chosen)
+                    .map(|winner| winner.chosen)
                     .into_iter()
                     .collect()
             }
@@ -86,15 +86,25 @@ pub(crate) fn solve_and_choose(
     choose(choice, points, candidates(solver, subset, focal), thr_px)
 }
 
+/// A sample's five-point roots and the one chosen among them before any
+/// polish.
+struct UnpolishedWinner {
+    roots: FivePointRoots,
+    /// The winner's index in `roots`.
+    index: usize,
+    /// The winner's unpolished F and its consensus set.
+    chosen: Chosen,
+}
+
 /// The five-point roots of a sample and the one whose unpolished F has the
-/// largest consensus (the first on ties): its index, F and consensus set;
-/// `None` when the sample has no usable root.
+/// largest consensus (the first on ties); `None` when the sample has no
+/// usable root.
 fn best_unpolished(
     subset: &Correspondences,
     points: &Correspondences,
     focal: f64,
     thr_px: f64,
-) -> Option<(FivePointRoots, usize, Chosen)> {
+) -> Option<UnpolishedWinner> {
     let (q1, q2) = bearings(subset, focal);
     let roots = FivePointRoots::new(&q1, &q2).ok()?;
     let unpolished = (0..roots.len())
@@ -105,8 +115,12 @@ fn best_unpolished(
             ))
         })
         .filter(|(_, f)| f.iter().all(|v| v.is_finite()));
-    let (winner, chosen) = best_consensus(points, unpolished, thr_px * thr_px)?;
-    Some((roots, winner, chosen))
+    let (index, chosen) = best_consensus(points, unpolished, thr_px * thr_px)?;
+    Some(UnpolishedWinner {
+        roots,
+        index,
+        chosen,
+    })
 }
 
 /// [`best_unpolished`]'s winner polished alone and its consensus set
@@ -117,10 +131,10 @@ fn best_then_polish(
     focal: f64,
     thr_px: f64,
 ) -> Vec<Chosen> {
-    let Some((roots, winner, _)) = best_unpolished(subset, points, focal, thr_px) else {
+    let Some(winner) = best_unpolished(subset, points, focal, thr_px) else {
         return Vec::new();
     };
-    let Ok(e) = roots.polished(winner) else {
+    let Ok(e) = winner.roots.polished(winner.index) else {
         return Vec::new();
     };
     let f = essential_to_fundamental(&e, focal);
