@@ -33,7 +33,8 @@ pub struct GeneratedHypotheses {
     pub fitted: Vec<bool>,
     /// The model of hypothesis `j` (refined, or the raw fit when `refine`
     /// is off), centred coordinates; None when the fit or the refinement
-    /// failed.
+    /// failed, or the fit explained fewer than [`Params::min_consensus`]
+    /// matches.
     pub models: Vec<Option<Matrix3<f64>>>,
     /// Wall time of steps 1–2, seconds.
     pub sampling_seconds: f64,
@@ -211,19 +212,34 @@ fn solve_minimal_samples(
     per_sample.into_iter().flatten().collect()
 }
 
-/// Step 3: IRLS-Tukey from each fit (or the raw fit when `refine` is off).
+/// The fit, unless its consensus set is smaller than
+/// [`Params::min_consensus`] (which the 8-point's fits, started from their
+/// sample, ignore).
+fn kept<'a>(fit: &'a Option<SampleFit>, params: &Params) -> Option<&'a SampleFit> {
+    fit.as_ref().filter(|fit| {
+        params.minimal_solver == MinimalSolver::EightPoint
+            || fit.start.len() >= params.min_consensus
+    })
+}
+
+/// Step 3: IRLS-Tukey from each fit (or the raw fit when `refine` is off);
+/// a minimal solution whose consensus set is smaller than
+/// [`Params::min_consensus`] is dropped first.
 fn refine_fits(
     points: &Correspondences,
     fits: &[Option<SampleFit>],
     params: &Params,
 ) -> Vec<Option<Matrix3<f64>>> {
     if !params.refine {
-        return fits.iter().map(|fit| fit.as_ref().map(|s| s.f)).collect();
+        return fits
+            .iter()
+            .map(|fit| kept(fit, params).map(|s| s.f))
+            .collect();
     }
     let irls = params.irls();
     fits.par_iter()
         .map_init(IrlsWorkspace::new, |ws, fit| {
-            let fit = fit.as_ref()?;
+            let fit = kept(fit, params)?;
             let refined = ws.run(points, &fit.start, Some(&fit.f), &irls).ok()?;
             Some(refined.f)
         })

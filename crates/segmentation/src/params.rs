@@ -118,6 +118,15 @@ pub struct Params {
     /// with the consensus set it was scored with). Ignored by
     /// `eight-point`, which has one. Default `best`.
     pub minimal_solutions: MinimalSolutions,
+    /// A minimal solution with fewer matches within `thr_px` than this is
+    /// dropped before its refinement (step 3) and gives no hypothesis: the
+    /// hypotheses of samples that mix motions or hold outliers rarely
+    /// explain many matches, and each one dropped saves its refinement,
+    /// its preference column and its share of the clustering. Ignored by
+    /// `eight-point`, whose refinement starts from its sample. A solution
+    /// with fewer than 8 such matches is never refined (the weighted
+    /// 8-point needs 8), so values up to 8 change nothing. Default 0.
+    pub min_consensus: usize,
     /// How the matches of a minimal sample are drawn (step 1): `uniform`
     /// (the thesis) or `localized` (the first uniformly, the others among
     /// its nearest matches in image 1: NAPSAC, Torr et al. 2002, as
@@ -237,6 +246,7 @@ impl Params {
             eight_point: EightPoint::Normalized,
             minimal_solver: MinimalSolver::EightPoint,
             minimal_solutions: MinimalSolutions::Best,
+            min_consensus: 0,
             sampling: Sampling::Uniform,
             focal_solver: FocalSolver::Kocur,
             weight_sets: WeightSets::Preset(WeightPreset::Adelaidermf),
@@ -259,7 +269,7 @@ impl Params {
 }
 
 /// The keys of [`Params`] in declaration order.
-pub const PARAM_KEYS: [&str; 34] = [
+pub const PARAM_KEYS: [&str; 35] = [
     "method",
     "num_samples",
     "adaptive_batch",
@@ -277,6 +287,7 @@ pub const PARAM_KEYS: [&str; 34] = [
     "eight_point",
     "minimal_solver",
     "minimal_solutions",
+    "min_consensus",
     "sampling",
     "focal_solver",
     "weight_sets",
@@ -425,6 +436,7 @@ impl Params {
             eight_point: self.eight_point,
             minimal_solver: self.minimal_solver,
             minimal_solutions: self.minimal_solutions,
+            min_consensus: self.min_consensus,
             sampling: self.sampling,
             refine: self.refine,
             thr_px_bits: self.thr_px.to_bits(),
@@ -489,6 +501,7 @@ pub struct HypothesisKey {
     eight_point: EightPoint,
     minimal_solver: MinimalSolver,
     minimal_solutions: MinimalSolutions,
+    min_consensus: usize,
     sampling: Sampling,
     refine: bool,
     thr_px_bits: u64,

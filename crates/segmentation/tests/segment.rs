@@ -599,3 +599,85 @@ fn clustering_a_subset_recovers_noise_free_labels_at_any_thread_count() {
         }
     }
 }
+
+#[test]
+fn min_consensus_drops_exactly_the_solutions_that_explain_fewer_matches() {
+    use segmentation::{generate_hypotheses, MinimalSolutions, MinimalSolver};
+    let scene = quick_scene(2, 900);
+    let m = matches(&scene);
+    // Without refinement a hypothesis is its minimal solution, whose
+    // consensus set can be counted here.
+    let raw = Params {
+        num_samples: 200,
+        minimal_solver: MinimalSolver::FivePoint,
+        minimal_solutions: MinimalSolutions::BestUnpolished,
+        refine: false,
+        ..Params::default()
+    };
+    let all = generate_hypotheses(&m, &raw).unwrap();
+    let thr2 = raw.thr_px * raw.thr_px;
+    let mut distances = vec![0.0; all.points.len()];
+    let mut explained = |f: &nalgebra::Matrix3<f64>| {
+        geometry::sampson_distances_squared(f, &all.points, &mut distances);
+        distances.iter().filter(|&&d| d <= thr2).count()
+    };
+    let counts: Vec<Option<usize>> = all
+        .models
+        .iter()
+        .map(|f| f.map(|f| explained(&f)))
+        .collect();
+    for k in [13, 20, 40] {
+        let kept = generate_hypotheses(
+            &m,
+            &Params {
+                min_consensus: k,
+                ..raw.clone()
+            },
+        )
+        .unwrap();
+        assert_eq!(kept.fitted, all.fitted);
+        let expected: Vec<_> = all
+            .models
+            .iter()
+            .zip(&counts)
+            .map(|(f, c)| f.filter(|_| c.unwrap() >= k))
+            .collect();
+        assert_eq!(kept.models, expected, "min_consensus {k}");
+        let dropped = kept.models.iter().filter(|f| f.is_none()).count()
+            - all.models.iter().filter(|f| f.is_none()).count();
+        assert!(
+            dropped > 0 && dropped < 200,
+            "min_consensus {k}: {dropped} dropped"
+        );
+    }
+
+    // With refinement the kept hypotheses are refined as before; up to 8
+    // nothing changes (fewer than 8 matches were never refined), and the
+    // 8-point, which refines from its sample, ignores the key.
+    let refined = Params {
+        refine: true,
+        irls_iters: 1,
+        ..raw.clone()
+    };
+    let before = generate_hypotheses(&m, &refined).unwrap();
+    let with = |k: usize, p: &Params| {
+        generate_hypotheses(
+            &m,
+            &Params {
+                min_consensus: k,
+                ..p.clone()
+            },
+        )
+        .unwrap()
+    };
+    assert_eq!(with(8, &refined).models, before.models);
+    let after = with(20, &refined);
+    for ((a, b), c) in after.models.iter().zip(&before.models).zip(&counts) {
+        assert_eq!(*a, b.filter(|_| c.is_some_and(|c| c >= 20)));
+    }
+    let eight = config(Method::Baseline);
+    assert_eq!(
+        with(1000, &eight).models,
+        generate_hypotheses(&m, &eight).unwrap().models
+    );
+}

@@ -56,6 +56,8 @@ EXPERIMENT FILE (TOML)
                                scored before their polish: faster)
                                | best-unpolished (as best-then-polish,
                                the winner left unpolished)
+  min_consensus = 0            solutions with fewer matches within thr_px are
+                               dropped before refinement (not eight-point)
   sampling = \"uniform\"        uniform | localized (the others among the first
                                match's nearest in image 1: NAPSAC) | mixed
                                (the two in turn)
