@@ -63,12 +63,17 @@ pub(crate) fn merge_sequence_owned(preferences: PreferenceMatrix) -> Vec<Merge> 
 
 /// Marks a slot that holds no active cluster.
 const DEAD: u32 = u32::MAX;
-/// The bound matrix is compacted when at least this share of its slots is
-/// dead (as numerator, denominator) and it has more than
-/// [`MIN_COMPACTION_WIDTH`] slots. Every sweep reads all slots, and a
-/// compaction costs about one sweep of the whole matrix.
-const DEAD_SHARE_TO_COMPACT: (usize, usize) = (1, 8);
-/// See [`DEAD_SHARE_TO_COMPACT`].
+/// The bound matrix is compacted (its dead slots dropped) once the sweeps
+/// since the last compaction have read at least this many times as many
+/// dead slots as the matrix has entries (and it has more than
+/// [`MIN_COMPACTION_WIDTH`] slots): a compaction moves every entry once,
+/// and a dead slot costs every sweep that reads it. Rent-or-buy: the
+/// reads wasted never exceed about this multiple of the compactions' cost.
+/// How many rows a sweep reads depends on the clusters (few at N 200 with
+/// M 600, many at N 3000 with M 3000), so a fixed share of dead slots
+/// either compacts too often for the first or too rarely for the second.
+const COMPACTION_PAYBACK: usize = 8;
+/// See [`COMPACTION_PAYBACK`].
 const MIN_COMPACTION_WIDTH: usize = 64;
 
 /// Inner products of exact preference vectors, as sparse sorted lists:
@@ -121,6 +126,9 @@ struct ContinuousState<'a> {
     cluster_of_slot: Vec<u32>,
     slot_of_cluster: Vec<u32>,
     live_slots: usize,
+    /// Dead slots read by the sweeps since the last compaction (one read
+    /// per slot per swept row); see [`COMPACTION_PAYBACK`].
+    dead_reads: usize,
     /// See [`bound_margin`].
     margin: f64,
     /// Scratch: bound sums of the merged cluster with every slot, and their
@@ -182,6 +190,7 @@ impl<'a> ContinuousState<'a> {
                 .collect(),
             slot_of_cluster: (0..n as u32).collect(),
             live_slots: n,
+            dead_reads: 0,
             margin: bound_margin(m),
             acc: vec![0.0; width],
             partial: vec![0.0; width],
@@ -246,6 +255,7 @@ impl<'a> ContinuousState<'a> {
         self.cluster_of_slot = cluster_of_slot;
         self.acc = vec![0.0; width];
         self.partial = vec![0.0; width];
+        self.dead_reads = 0;
     }
 
     /// Eq. 40 on the exact lists: `kept ← min(kept, removed)`, which is
@@ -334,13 +344,16 @@ impl AgglomerationState for ContinuousState<'_> {
         self.cluster_of_slot[removed_slot] = DEAD;
         self.slot_of_cluster[removed] = DEAD;
         self.live_slots -= 1;
-        let (dead_num, dead_den) = DEAD_SHARE_TO_COMPACT;
         let dead = self.width - self.live_slots;
+        // The sweep below reads every slot of the merged cluster's rows,
+        // and the candidate loop every slot once.
+        self.dead_reads += dead * (self.index[kept].len() + 1);
+        let rows = self.bounds.len() / self.width;
         // At least a lane of dead slots, so that the padding alone never
         // triggers a compaction.
         if self.width > MIN_COMPACTION_WIDTH
             && dead >= LANES
-            && dead * dead_den >= self.width * dead_num
+            && self.dead_reads >= COMPACTION_PAYBACK * rows * self.width
         {
             self.compact();
         }
@@ -597,9 +610,10 @@ mod tests {
         }
     }
 
-    /// After merges and the in-place compactions they trigger, the bound
-    /// matrix holds exactly the quantised exact vector of every active
-    /// cluster in its slot, and nothing in the other slots.
+    /// After merges and in-place compactions (those the rule triggers, and
+    /// one every 40 merges), the bound matrix holds exactly the quantised
+    /// exact vector of every active cluster in its slot, and nothing in
+    /// the other slots.
     #[test]
     fn compaction_keeps_every_live_column() {
         let mut rng = Xorshift(8);
@@ -615,6 +629,9 @@ mod tests {
                 continue;
             }
             absorb(&mut state, (kept, removed), &mut active, &mut fresh);
+            if widths.len() % 40 == 0 && state.width - state.live_slots >= LANES {
+                state.compact();
+            }
             widths.push(state.width);
         }
         assert!(
