@@ -322,34 +322,35 @@ fn consensus_kernel(
         .zip(y1[..n].chunks(B))
         .zip(x2[..n].chunks(B).zip(y2[..n].chunks(B)));
     let mut d2 = [0.0; B];
-    let mut kept = [0usize; B];
     for (start, ((bx1, by1), (bx2, by2))) in (0..n).step_by(B).zip(blocks) {
         if out.len() + (n - start) < at_least {
             return false;
         }
-        // Distances of the block (a branch-free loop that vectorises),
-        // then the indices within the bound, written without a branch
-        // (`m ≤ k < B`, so the mask only spares a bounds check).
+        // Distances of the block (a branch-free loop that vectorises).
         let points = bx1.iter().zip(by1).zip(bx2.iter().zip(by2));
         for (d, ((&u1, &v1), (&u2, &v2))) in d2.iter_mut().zip(points) {
             let (e, g1, g2) = epipolar_terms(&f, [u1, v1], [u2, v2]);
             *d = ratio(e, e * e, g1 + g2);
         }
-        let mut m = 0;
+        // The block's matches within the bound as a bit mask, then their
+        // indices from its set bits (a losing candidate has few).
+        let mut mask = 0u64;
         for (k, d) in d2[..bx1.len()].iter().enumerate() {
-            kept[m & (B - 1)] = start + k;
-            m += usize::from(*d <= thr2);
+            mask |= u64::from(*d <= thr2) << k;
         }
-        out.extend_from_slice(&kept[..m]);
+        while mask != 0 {
+            out.push(start + mask.trailing_zeros() as usize);
+            mask &= mask - 1;
+        }
     }
     out.len() >= at_least
 }
 
 /// Matches per block of [`sampson_consensus`]: distances are computed a
-/// block at a time, and the give-up test runs between blocks. A power of
-/// two (the kernel masks its indices with `CONSENSUS_BLOCK − 1`).
+/// block at a time, and the give-up test runs between blocks. At most 64
+/// (the kernel marks a block's matches within the bound in a `u64`).
 const CONSENSUS_BLOCK: usize = 32;
-const _: () = assert!(CONSENSUS_BLOCK.is_power_of_two());
+const _: () = assert!(CONSENSUS_BLOCK <= 64);
 
 dispatch! {
     /// Signed Sampson residuals `r_i = e_i / sqrt(a_i² + b_i² + c_i² + d_i²)`
