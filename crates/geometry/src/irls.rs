@@ -324,9 +324,12 @@ impl IrlsWorkspace {
         for iteration in 1..=params.max_iters {
             iterations = iteration;
             f = self.weighted_refit(points, params)?;
-            let change = self.update_inliers(points, &f, params, iteration)?;
+            // After the last iteration the change decides nothing and is
+            // not counted.
+            let last = iteration == params.max_iters;
+            let change = self.update_inliers(points, &f, params, iteration, !last)?;
             // 3f: converged when the set changed by less than min_change.
-            if (change.changed as f64) < params.min_change * change.union as f64 {
+            if last || (change.changed as f64) < params.min_change * change.union as f64 {
                 break;
             }
             // 3a of the next iteration: residuals of the new inliers.
@@ -431,13 +434,15 @@ impl IrlsWorkspace {
     }
 
     /// Step 3e: the new inlier set from the residuals of all
-    /// correspondences to `f`, and how much it changed.
+    /// correspondences to `f`, and how much it changed (zero unless
+    /// `measure`).
     fn update_inliers(
         &mut self,
         points: &Correspondences,
         f: &Matrix3<f64>,
         params: &IrlsParams,
         iteration: usize,
+        measure: bool,
     ) -> Result<InlierChange, GeometryError> {
         let thr2 = params.thr_px * params.thr_px;
         sampson_residuals_signed(f, points, &mut self.residuals_all);
@@ -456,11 +461,16 @@ impl IrlsWorkspace {
             None => thr2,
         };
         let mut change = InlierChange::default();
-        for (inlier, &r) in self.mask.iter_mut().zip(&self.residuals_all) {
-            let new = r * r <= bound;
-            change.changed += usize::from(new != *inlier);
-            change.union += usize::from(new || *inlier);
-            *inlier = new;
+        let flags = self.mask.iter_mut().zip(&self.residuals_all);
+        if measure {
+            for (inlier, &r) in flags {
+                let new = r * r <= bound;
+                change.changed += usize::from(new != *inlier);
+                change.union += usize::from(new || *inlier);
+                *inlier = new;
+            }
+        } else {
+            flags.for_each(|(inlier, &r)| *inlier = r * r <= bound);
         }
         self.collect_inliers();
         if self.inliers.len() < MIN_POINTS {
