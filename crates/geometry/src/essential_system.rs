@@ -112,7 +112,8 @@ fn add_quadratic_product(acc: &mut Cubic, a: &Quadratic, b: &Linear) {
 }
 
 /// The ten constraints `det E` and `2 E Eᵀ E − tr(E Eᵀ) E` (row-major) for
-/// `E = x X + y Y + z Z + W`, as rows of coefficients over [`MONOMIALS`].
+/// `E = x X + y Y + z Z + W`, as rows of coefficients over [`MONOMIALS`]
+/// (column-major, for the evaluation of the polish).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct EssentialSystem {
     /// Row `k`: the coefficients of equation `k` (0: `det E`, then the
@@ -122,53 +123,69 @@ pub(crate) struct EssentialSystem {
     magnitudes: SMatrix<f64, 10, 20>,
 }
 
+/// The coefficient rows of [`EssentialSystem`], row `k` over
+/// [`MONOMIALS`] (what the elimination of the 5-point solver reads).
+pub(crate) type ConstraintRows = [[f64; 20]; 10];
+
 impl EssentialSystem {
     /// Expands the constraints of the basis `[X, Y, Z, W]`.
+    #[cfg(test)]
     pub fn new(basis: &[Matrix3<f64>; 4]) -> Self {
-        let [bx, by, bz, bw] = basis;
-        let e: [[Linear; 3]; 3] = std::array::from_fn(|r| {
-            std::array::from_fn(|c| [bx[(r, c)], by[(r, c)], bz[(r, c)], bw[(r, c)]])
-        });
-        let mut rows = [[0.0; 20]; 10];
-        // det E by the cofactors of the first row.
-        for c in 0..3 {
-            let (c1, c2) = ((c + 1) % 3, (c + 2) % 3);
-            let mut cofactor = [0.0; 10];
-            add_linear_product(&mut cofactor, &e[1][c1], &e[2][c2]);
-            let neg: Linear = e[1][c2].map(|v| -v);
-            add_linear_product(&mut cofactor, &neg, &e[2][c1]);
-            add_quadratic_product(&mut rows[0], &cofactor, &e[0][c]);
-        }
-        // P = E Eᵀ, then 2 P − tr(P) I.
-        let mut p = [[[0.0; 10]; 3]; 3];
-        for (i, p_row) in p.iter_mut().enumerate() {
-            for (j, entry) in p_row.iter_mut().enumerate() {
-                for (a, b) in e[i].iter().zip(&e[j]) {
-                    add_linear_product(entry, a, b);
-                }
-            }
-        }
-        let trace: Quadratic = std::array::from_fn(|k| p[0][0][k] + p[1][1][k] + p[2][2][k]);
-        for (i, row) in p.iter_mut().enumerate() {
-            row[i]
-                .iter_mut()
-                .zip(&trace)
-                .for_each(|(v, t)| *v -= 0.5 * t);
-            row.iter_mut().flatten().for_each(|v| *v *= 2.0);
-        }
-        for r in 0..3 {
-            for c in 0..3 {
-                for k in 0..3 {
-                    add_quadratic_product(&mut rows[1 + 3 * r + c], &p[r][k], &e[k][c]);
-                }
-            }
-        }
+        Self::from_rows(&constraint_rows(basis))
+    }
+
+    /// The system of the rows [`constraint_rows`] expanded.
+    pub fn from_rows(rows: &ConstraintRows) -> Self {
         let coefficients = SMatrix::from_fn(|r, c| rows[r][c]);
         Self {
             coefficients,
             magnitudes: coefficients.abs(),
         }
     }
+}
+
+/// Expands the ten constraints of the basis `[X, Y, Z, W]` into rows of
+/// coefficients over [`MONOMIALS`].
+pub(crate) fn constraint_rows(basis: &[Matrix3<f64>; 4]) -> ConstraintRows {
+    let [bx, by, bz, bw] = basis;
+    let e: [[Linear; 3]; 3] = std::array::from_fn(|r| {
+        std::array::from_fn(|c| [bx[(r, c)], by[(r, c)], bz[(r, c)], bw[(r, c)]])
+    });
+    let mut rows = [[0.0; 20]; 10];
+    // det E by the cofactors of the first row.
+    for c in 0..3 {
+        let (c1, c2) = ((c + 1) % 3, (c + 2) % 3);
+        let mut cofactor = [0.0; 10];
+        add_linear_product(&mut cofactor, &e[1][c1], &e[2][c2]);
+        let neg: Linear = e[1][c2].map(|v| -v);
+        add_linear_product(&mut cofactor, &neg, &e[2][c1]);
+        add_quadratic_product(&mut rows[0], &cofactor, &e[0][c]);
+    }
+    // P = E Eᵀ, then 2 P − tr(P) I.
+    let mut p = [[[0.0; 10]; 3]; 3];
+    for (i, p_row) in p.iter_mut().enumerate() {
+        for (j, entry) in p_row.iter_mut().enumerate() {
+            for (a, b) in e[i].iter().zip(&e[j]) {
+                add_linear_product(entry, a, b);
+            }
+        }
+    }
+    let trace: Quadratic = std::array::from_fn(|k| p[0][0][k] + p[1][1][k] + p[2][2][k]);
+    for (i, row) in p.iter_mut().enumerate() {
+        row[i]
+            .iter_mut()
+            .zip(&trace)
+            .for_each(|(v, t)| *v -= 0.5 * t);
+        row.iter_mut().flatten().for_each(|v| *v *= 2.0);
+    }
+    for r in 0..3 {
+        for c in 0..3 {
+            for k in 0..3 {
+                add_quadratic_product(&mut rows[1 + 3 * r + c], &p[r][k], &e[k][c]);
+            }
+        }
+    }
+    rows
 }
 
 impl Equations for EssentialSystem {

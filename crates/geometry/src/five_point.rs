@@ -26,7 +26,7 @@
 //! by Gauss–Newton steps on the ten equations. Up to 10 solutions.
 
 use crate::eight_point::finish;
-use crate::essential_system::EssentialSystem;
+use crate::essential_system::{constraint_rows, ConstraintRows, EssentialSystem};
 use crate::lu::lu_solve_template;
 use crate::minimal::{
     check_sample_size, epipolar_row, is_duplicate, matrix_from_row_major, null_basis,
@@ -34,7 +34,8 @@ use crate::minimal::{
 use crate::poly::polish_root;
 use crate::sturm::sturm_roots;
 use crate::GeometryError;
-use nalgebra::{Matrix3, SMatrix, Vector3};
+use nalgebra::{Matrix3, Vector3};
+use std::sync::OnceLock;
 
 /// Number of matches of the 5-point solver.
 pub const FIVE_POINT_SAMPLE: usize = 5;
@@ -122,8 +123,11 @@ pub fn five_point(
 pub struct FivePointRoots {
     /// The null-space basis `[X, Y, Z, W]` of the five epipolar equations.
     basis: [Matrix3<f64>; 4],
-    /// The ten cubic constraints over that basis (what the polish solves).
-    system: EssentialSystem,
+    /// The ten cubic constraints over that basis, row by row.
+    constraints: ConstraintRows,
+    /// The same constraints arranged for the polish, built at its first
+    /// call (a caller that keeps roots unpolished never needs them).
+    system: OnceLock<EssentialSystem>,
     /// `(x, y, z)` of each real root, as the Sturm sequence and the back
     /// substitution give it.
     roots: Vec<[f64; 3]>,
@@ -145,8 +149,8 @@ impl FivePointRoots {
         let rows: [[f64; 9]; FIVE_POINT_SAMPLE] =
             std::array::from_fn(|i| epipolar_row(q1[i].into(), q2[i].into()));
         let basis = null_basis::<4>(&rows)?.map(|v| matrix_from_row_major(&v));
-        let system = EssentialSystem::new(&basis);
-        let hidden = hidden_variable_matrix(&system.coefficients)?;
+        let constraints = constraint_rows(&basis);
+        let hidden = hidden_variable_matrix(&constraints)?;
         let zs = sturm_roots(&determinant(&hidden)).ok_or(GeometryError::Degenerate(
             "5-point: the degree-10 polynomial is not finite or vanishes",
         ))?;
@@ -157,7 +161,8 @@ impl FivePointRoots {
             .collect();
         Ok(Self {
             basis,
-            system,
+            constraints,
+            system: OnceLock::new(),
             roots,
         })
     }
@@ -182,7 +187,10 @@ impl FivePointRoots {
     /// constraints (a step kept only while it lowers their residual).
     /// Panics if `k >= len()`.
     pub fn polished(&self, k: usize) -> Result<Matrix3<f64>, GeometryError> {
-        let (root, _) = polish_root(&self.system, self.roots[k], POLISH_STEPS);
+        let system = self
+            .system
+            .get_or_init(|| EssentialSystem::from_rows(&self.constraints));
+        let (root, _) = polish_root(system, self.roots[k], POLISH_STEPS);
         self.essential(root)
     }
 
@@ -221,11 +229,8 @@ fn unit_bearings(
 /// answer), then `⟨x²z⟩ − z⟨x²⟩`, `⟨y²z⟩ − z⟨y²⟩`, `⟨xyz⟩ − z⟨xy⟩`
 /// (Nistér 2004, §3.2). Columns 10–19 are `xz², xz, x, yz², yz, y, z³, z²,
 /// z, 1`.
-fn hidden_variable_matrix(
-    coefficients: &SMatrix<f64, 10, 20>,
-) -> Result<HiddenMatrix, GeometryError> {
-    let rows = std::array::from_fn(|r| std::array::from_fn(|c| coefficients[(r, c)]));
-    let b = lu_solve_template(rows)
+fn hidden_variable_matrix(rows: &ConstraintRows) -> Result<HiddenMatrix, GeometryError> {
+    let b = lu_solve_template(*rows)
         .filter(|b| b.iter().all(|row| row[10..].iter().all(|v| v.is_finite())))
         .ok_or(GeometryError::Degenerate(
             "5-point: singular elimination template",
