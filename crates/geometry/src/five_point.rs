@@ -126,8 +126,9 @@ pub struct FivePointRoots {
     /// The ten cubic constraints over that basis, row by row.
     constraints: ConstraintRows,
     /// The same constraints arranged for the polish, built at its first
-    /// call (a caller that keeps roots unpolished never needs them).
-    system: OnceLock<EssentialSystem>,
+    /// call (a caller that keeps roots unpolished never needs them; boxed,
+    /// so that moving the roots does not copy its 3 KB).
+    system: OnceLock<Box<EssentialSystem>>,
     /// `(x, y, z)` of each real root, as the Sturm sequence and the back
     /// substitution give it.
     roots: Vec<[f64; 3]>,
@@ -189,8 +190,8 @@ impl FivePointRoots {
     pub fn polished(&self, k: usize) -> Result<Matrix3<f64>, GeometryError> {
         let system = self
             .system
-            .get_or_init(|| EssentialSystem::from_rows(&self.constraints));
-        let (root, _) = polish_root(system, self.roots[k], POLISH_STEPS);
+            .get_or_init(|| Box::new(EssentialSystem::from_rows(&self.constraints)));
+        let (root, _) = polish_root(&**system, self.roots[k], POLISH_STEPS);
         self.essential(root)
     }
 
