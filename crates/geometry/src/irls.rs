@@ -500,10 +500,17 @@ impl IrlsWorkspace {
         })
     }
 
+    /// The indices of the mask's set flags, increasing, into `inliers`
+    /// (written without a branch: each index is stored and kept when set).
     fn collect_inliers(&mut self) {
         self.inliers.clear();
-        let mask = &self.mask;
-        self.inliers.extend((0..mask.len()).filter(|&i| mask[i]));
+        self.inliers.resize(self.mask.len(), 0);
+        let mut m = 0;
+        for (i, &set) in self.mask.iter().enumerate() {
+            self.inliers[m] = i;
+            m += usize::from(set);
+        }
+        self.inliers.truncate(m);
     }
 }
 

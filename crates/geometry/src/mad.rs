@@ -42,12 +42,10 @@ pub fn median_in_place(values: &mut [f64]) -> f64 {
 /// to `u64`, so that medians are selected with integer comparisons.
 #[inline(always)]
 fn order_key(v: f64) -> u64 {
+    // Negative: all bits flipped; otherwise the sign bit set. Without a
+    // branch: the arithmetic shift spreads the sign over the word.
     let bits = v.to_bits();
-    if bits >> 63 == 1 {
-        !bits
-    } else {
-        bits | (1 << 63)
-    }
+    bits ^ (((bits as i64 >> 63) as u64) | (1 << 63))
 }
 
 /// Inverse of [`order_key`].
