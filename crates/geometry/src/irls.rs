@@ -270,6 +270,9 @@ pub struct IrlsWorkspace {
     mask: Vec<bool>,
     /// Indices of the current inliers, increasing.
     inliers: Vec<usize>,
+    /// Scratch of [`collect_inliers`](Self::collect_inliers): one slot per
+    /// correspondence (it only grows, so that it is not refilled).
+    positions: Vec<usize>,
     /// Signed Sampson residuals of all correspondences under the current F.
     residuals_all: Vec<f64>,
     /// Signed residuals of the current inliers.
@@ -501,16 +504,19 @@ impl IrlsWorkspace {
     }
 
     /// The indices of the mask's set flags, increasing, into `inliers`
-    /// (written without a branch: each index is stored and kept when set).
+    /// (found without a branch: each index is stored and kept when set).
     fn collect_inliers(&mut self) {
-        self.inliers.clear();
-        self.inliers.resize(self.mask.len(), 0);
+        let n = self.mask.len();
+        if self.positions.len() < n {
+            self.positions.resize(n, 0);
+        }
         let mut m = 0;
         for (i, &set) in self.mask.iter().enumerate() {
-            self.inliers[m] = i;
+            self.positions[m] = i;
             m += usize::from(set);
         }
-        self.inliers.truncate(m);
+        self.inliers.clear();
+        self.inliers.extend_from_slice(&self.positions[..m]);
     }
 }
 
