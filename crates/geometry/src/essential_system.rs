@@ -112,8 +112,8 @@ fn add_quadratic_product(acc: &mut Cubic, a: &Quadratic, b: &Linear) {
 }
 
 /// The ten constraints `det E` and `2 E Eᵀ E − tr(E Eᵀ) E` (row-major) for
-/// `E = x X + y Y + z Z + W`, as rows of coefficients over [`MONOMIALS`]
-/// (column-major, for the evaluation of the polish).
+/// `E = x X + y Y + z Z + W`, as rows of coefficients over [`MONOMIALS`],
+/// stored column-major for the evaluation of the polish.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct EssentialSystem {
     /// Row `k`: the coefficients of equation `k` (0: `det E`, then the

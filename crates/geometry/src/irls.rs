@@ -329,10 +329,13 @@ impl IrlsWorkspace {
             f = self.weighted_refit(points, params)?;
             // After the last iteration the change decides nothing and is
             // not counted.
-            let last = iteration == params.max_iters;
-            let change = self.update_inliers(points, &f, params, iteration, !last)?;
+            let measure = iteration < params.max_iters;
+            let change = self.update_inliers(points, &f, params, iteration, measure)?;
             // 3f: converged when the set changed by less than min_change.
-            if last || (change.changed as f64) < params.min_change * change.union as f64 {
+            let converged = change.map_or(true, |c| {
+                (c.changed as f64) < params.min_change * c.union as f64
+            });
+            if converged {
                 break;
             }
             // 3a of the next iteration: residuals of the new inliers.
@@ -437,7 +440,7 @@ impl IrlsWorkspace {
     }
 
     /// Step 3e: the new inlier set from the residuals of all
-    /// correspondences to `f`, and how much it changed (zero unless
+    /// correspondences to `f`, and how much it changed (`None` unless
     /// `measure`).
     fn update_inliers(
         &mut self,
@@ -446,7 +449,7 @@ impl IrlsWorkspace {
         params: &IrlsParams,
         iteration: usize,
         measure: bool,
-    ) -> Result<InlierChange, GeometryError> {
+    ) -> Result<Option<InlierChange>, GeometryError> {
         let thr2 = params.thr_px * params.thr_px;
         sampson_residuals_signed(f, points, &mut self.residuals_all);
         // min(thr², 4σ²) is thr² whenever MAD ≥ thr / (2 · 1.4826); the
@@ -463,18 +466,20 @@ impl IrlsWorkspace {
             }
             None => thr2,
         };
-        let mut change = InlierChange::default();
         let flags = self.mask.iter_mut().zip(&self.residuals_all);
-        if measure {
+        let change = if measure {
+            let mut change = InlierChange::default();
             for (inlier, &r) in flags {
                 let new = r * r <= bound;
                 change.changed += usize::from(new != *inlier);
                 change.union += usize::from(new || *inlier);
                 *inlier = new;
             }
+            Some(change)
         } else {
             flags.for_each(|(inlier, &r)| *inlier = r * r <= bound);
-        }
+            None
+        };
         self.collect_inliers();
         if self.inliers.len() < MIN_POINTS {
             return Err(GeometryError::TooFewInliers {
