@@ -109,6 +109,7 @@ def segment(
     minimal_solver: Literal["five-point", "eight-point", "seven-point", "six-point-focal"] = "five-point",
     minimal_solutions: Literal["best", "all", "best-then-polish", "best-unpolished"] = "best",
     min_consensus: int = 0,
+    preselect_matches: int = 0,
     sampling: Literal["uniform", "localized", "mixed"] = "uniform",
     focal_solver: Literal["kocur", "bougnoux"] = "kocur",
     weight_sets: _WeightSets = "adelaidermf",

@@ -62,6 +62,7 @@ use std::fmt::Write as _;
 ///     - minimal_solver = "five-point"  ("five-point", "eight-point", "seven-point" or "six-point-focal")
 ///     - minimal_solutions = "best"  ("best": most matches within thr_px, "all", or "best-then-polish": best, five-point roots scored before their polish, or "best-unpolished": as "best-then-polish", the winner left unpolished)
 ///     - min_consensus = 0           (solutions with fewer matches within thr_px are dropped before refinement; ignored by "eight-point")
+///     - preselect_matches = 0       (K > 0: a sample's solutions are first scored on K random matches, and only the top ones on all of them; "best" choices only)
 ///     - sampling = "uniform"        ("uniform", "localized": the others among the first match's nearest, or "mixed": the two in turn)
 ///     - focal_solver = "kocur"      ("kocur" or "bougnoux")
 ///     - weight_sets = "adelaidermf" ("adelaidermf", "hopef" or [[w_f1, w_pp1, w_f2, w_pp2], ...])

@@ -2,9 +2,10 @@
 //! another minimal solver) and the IRLS-Tukey refinement of each.
 
 use crate::adaptive::{stop_after, SupportTracker};
-use crate::minimal::solve_and_choose;
+use crate::minimal::{solve_and_choose, ScoringSet};
 use crate::{
-    subset_indices, EightPoint, Matches, MinimalSampler, MinimalSolver, Params, SegmentationError,
+    hypothesis_rng, subset_indices, EightPoint, Matches, MinimalSampler, MinimalSolver, Params,
+    SegmentationError,
 };
 use geometry::{eight_point_normalized, eight_point_plain, Correspondences, IrlsWorkspace};
 use nalgebra::Matrix3;
@@ -98,6 +99,11 @@ pub fn generate_hypotheses(
         (points, Cow::Owned(pixels1))
     };
     let sampler = MinimalSampler::new(&pixels1, params.sampling, params.sample_size());
+    let preselect = preselect_subset(&points, params)?;
+    let scoring = ScoringSet {
+        points: &points,
+        preselect: preselect.as_ref(),
+    };
     let batch = match params.adaptive_batch {
         0 => params.num_samples,
         b => b,
@@ -111,7 +117,7 @@ pub fn generate_hypotheses(
         let t = Instant::now();
         let fits = match params.minimal_solver {
             MinimalSolver::EightPoint => fit_minimal_samples(&points, &sampler, samples, params),
-            _ => solve_minimal_samples(&points, &sampler, samples, params, matches.focal_prior),
+            _ => solve_minimal_samples(scoring, &sampler, samples, params, matches.focal_prior),
         };
         sampling_seconds += t.elapsed().as_secs_f64();
 
@@ -133,6 +139,27 @@ pub fn generate_hypotheses(
         sampling_seconds,
         refine_seconds,
     })
+}
+
+/// The matches of [`Params::preselect_matches`]: that many of `points`,
+/// drawn uniformly from stream 2⁶⁴ − 2 of [`hypothesis_rng`] (no hypothesis
+/// draws from it, nor does [`subset_indices`]); `None` when the key is 0 or
+/// not below the number of points.
+fn preselect_subset(
+    points: &Correspondences,
+    params: &Params,
+) -> Result<Option<Correspondences>, SegmentationError> {
+    let (n, size) = (points.len(), params.preselect_matches);
+    if size == 0 || size >= n {
+        return Ok(None);
+    }
+    let mut rng = hypothesis_rng(params.seed, usize::MAX - 1);
+    let mut indices = rand::seq::index::sample(&mut rng, n, size).into_vec();
+    indices.sort_unstable();
+    points
+        .subset(&indices)
+        .map(Some)
+        .map_err(SegmentationError::InvalidPoints)
 }
 
 /// A minimal sample's fit and the matches its refinement starts from: the
@@ -173,7 +200,7 @@ fn fit_minimal_samples(
 /// solution gives one unfitted hypothesis. `focal` is the five-point's
 /// `K(f)`.
 fn solve_minimal_samples(
-    points: &Correspondences,
+    scoring: ScoringSet,
     sampler: &MinimalSampler,
     samples: Range<usize>,
     params: &Params,
@@ -184,12 +211,12 @@ fn solve_minimal_samples(
         .into_par_iter()
         .map(|j| {
             let sample = sampler.sample(params.seed, j, size);
-            let chosen = match points.subset(&sample) {
+            let chosen = match scoring.points.subset(&sample) {
                 Ok(subset) => solve_and_choose(
                     params.minimal_solver,
                     params.minimal_solutions,
                     &subset,
-                    points,
+                    scoring,
                     focal,
                     params.thr_px,
                 ),

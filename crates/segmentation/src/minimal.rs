@@ -56,6 +56,29 @@ fn essential_to_fundamental(e: &Matrix3<f64>, focal: f64) -> Matrix3<f64> {
     k_inv * e * k_inv
 }
 
+/// The matches a sample's solutions are scored on: all of them, and
+/// optionally a few that pick the finalists first
+/// ([`crate::Params::preselect_matches`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ScoringSet<'a> {
+    /// Every match (the consensus sets are over these).
+    pub points: &'a Correspondences,
+    /// A subset of `points`: only the solutions with the most matches of it
+    /// within the threshold are scored on `points`.
+    pub preselect: Option<&'a Correspondences>,
+}
+
+impl<'a> ScoringSet<'a> {
+    /// Every solution scored on all of `points`.
+    #[cfg(test)]
+    pub fn all(points: &'a Correspondences) -> Self {
+        Self {
+            points,
+            preselect: None,
+        }
+    }
+}
+
 /// One sample's hypotheses: its candidates under `solver`, chosen by
 /// `choice` ([`choose`]); with the five-point solver and
 /// [`MinimalSolutions::BestThenPolish`] or
@@ -65,17 +88,17 @@ pub(crate) fn solve_and_choose(
     solver: MinimalSolver,
     choice: MinimalSolutions,
     subset: &Correspondences,
-    points: &Correspondences,
+    scoring: ScoringSet,
     focal: f64,
     thr_px: f64,
 ) -> Vec<Chosen> {
     if solver == MinimalSolver::FivePoint {
         match choice {
             MinimalSolutions::BestThenPolish => {
-                return best_then_polish(subset, points, focal, thr_px)
+                return best_then_polish(subset, scoring, focal, thr_px)
             }
             MinimalSolutions::BestUnpolished => {
-                return best_unpolished(subset, points, focal, thr_px)
+                return best_unpolished(subset, scoring, focal, thr_px)
                     .map(|winner| winner.chosen)
                     .into_iter()
                     .collect()
@@ -83,7 +106,7 @@ pub(crate) fn solve_and_choose(
             MinimalSolutions::Best | MinimalSolutions::All => {}
         }
     }
-    choose(choice, points, candidates(solver, subset, focal), thr_px)
+    choose(choice, scoring, candidates(solver, subset, focal), thr_px)
 }
 
 /// A sample's five-point roots and the one chosen among them before any
@@ -101,7 +124,7 @@ struct UnpolishedWinner {
 /// usable root.
 fn best_unpolished(
     subset: &Correspondences,
-    points: &Correspondences,
+    scoring: ScoringSet,
     focal: f64,
     thr_px: f64,
 ) -> Option<UnpolishedWinner> {
@@ -115,7 +138,7 @@ fn best_unpolished(
             ))
         })
         .filter(|(_, f)| f.iter().all(|v| v.is_finite()));
-    let (index, chosen) = best_consensus(points, unpolished, thr_px * thr_px)?;
+    let (index, chosen) = best_consensus(scoring, unpolished, thr_px * thr_px)?;
     Some(UnpolishedWinner {
         roots,
         index,
@@ -127,11 +150,11 @@ fn best_unpolished(
 /// recounted; empty when the sample has no root or the polish fails.
 fn best_then_polish(
     subset: &Correspondences,
-    points: &Correspondences,
+    scoring: ScoringSet,
     focal: f64,
     thr_px: f64,
 ) -> Vec<Chosen> {
-    let Some(winner) = best_unpolished(subset, points, focal, thr_px) else {
+    let Some(winner) = best_unpolished(subset, scoring, focal, thr_px) else {
         return Vec::new();
     };
     let Ok(e) = winner.roots.polished(winner.index) else {
@@ -142,7 +165,7 @@ fn best_then_polish(
         return Vec::new();
     }
     let mut consensus = Vec::new();
-    sampson_consensus(&f, points, thr_px * thr_px, 0, &mut consensus);
+    sampson_consensus(&f, scoring.points, thr_px * thr_px, 0, &mut consensus);
     vec![Chosen { f, consensus }]
 }
 
@@ -155,11 +178,12 @@ pub(crate) struct Chosen {
 }
 
 /// The candidates that become hypotheses, each with its consensus set: all
-/// of them, or the one with the largest consensus (the first on ties). A
-/// candidate is abandoned as soon as it can no longer beat the best so far.
+/// of them, or the one with the largest consensus (the first on ties,
+/// among the preselected ones, [`best_consensus`]). A candidate is
+/// abandoned as soon as it can no longer beat the best so far.
 pub(crate) fn choose(
     choice: MinimalSolutions,
-    points: &Correspondences,
+    scoring: ScoringSet,
     candidates: Vec<Matrix3<f64>>,
     thr_px: f64,
 ) -> Vec<Chosen> {
@@ -169,14 +193,14 @@ pub(crate) fn choose(
             .into_iter()
             .map(|f| {
                 let mut consensus = Vec::new();
-                sampson_consensus(&f, points, thr2, 0, &mut consensus);
+                sampson_consensus(&f, scoring.points, thr2, 0, &mut consensus);
                 Chosen { f, consensus }
             })
             .collect(),
         MinimalSolutions::Best
         | MinimalSolutions::BestThenPolish
         | MinimalSolutions::BestUnpolished => {
-            best_consensus(points, candidates.into_iter().enumerate(), thr2)
+            best_consensus(scoring, candidates.into_iter().enumerate(), thr2)
                 .map(|(_, chosen)| chosen)
                 .into_iter()
                 .collect()
@@ -184,11 +208,55 @@ pub(crate) fn choose(
     }
 }
 
+/// The candidate `(key, F)` with the largest consensus within `thr2` px²
+/// on `scoring.points`, the first on ties, with its key and consensus set;
+/// `None` without candidates. With `scoring.preselect`, only the
+/// candidates with the most of its matches within `thr2` compete
+/// ([`preselected`]): the preemptive scoring of RANSAC's hypotheses on a
+/// few matches first (Nistér, "Preemptive RANSAC", ICCV 2003; Matas &
+/// Chum's T(d,d) test, BMVC 2002), here among one sample's roots.
+fn best_consensus<K>(
+    scoring: ScoringSet,
+    candidates: impl Iterator<Item = (K, Matrix3<f64>)>,
+    thr2: f64,
+) -> Option<(K, Chosen)> {
+    match scoring.preselect {
+        None => most_consensus(scoring.points, candidates, thr2),
+        Some(few) => most_consensus(
+            scoring.points,
+            preselected(few, candidates, thr2).into_iter(),
+            thr2,
+        ),
+    }
+}
+
+/// The candidates with the most matches of `few` within `thr2` px² (every
+/// one of them on a tie), in their order.
+fn preselected<K>(
+    few: &Correspondences,
+    candidates: impl Iterator<Item = (K, Matrix3<f64>)>,
+    thr2: f64,
+) -> Vec<(K, Matrix3<f64>)> {
+    let mut scratch = Vec::new();
+    let scored: Vec<(usize, K, Matrix3<f64>)> = candidates
+        .map(|(key, f)| {
+            sampson_consensus(&f, few, thr2, 0, &mut scratch);
+            (scratch.len(), key, f)
+        })
+        .collect();
+    let top = scored.iter().map(|(count, ..)| *count).max().unwrap_or(0);
+    scored
+        .into_iter()
+        .filter(|(count, ..)| *count == top)
+        .map(|(_, key, f)| (key, f))
+        .collect()
+}
+
 /// The candidate `(key, F)` with the largest consensus within `thr2` px²,
 /// the first on ties, with its key and consensus set; `None` without
 /// candidates. A candidate is abandoned as soon as it can no longer beat
 /// the best so far.
-fn best_consensus<K>(
+fn most_consensus<K>(
     points: &Correspondences,
     candidates: impl Iterator<Item = (K, Matrix3<f64>)>,
     thr2: f64,
@@ -260,11 +328,21 @@ mod tests {
                 "{solver:?}: {all:?}"
             );
             // The best solution is the one every match agrees with.
-            let best = choose(MinimalSolutions::Best, &points, all.clone(), 0.5);
+            let best = choose(
+                MinimalSolutions::Best,
+                ScoringSet::all(&points),
+                all.clone(),
+                0.5,
+            );
             assert_eq!(best.len(), 1);
             assert!(same_up_to_scale(&best[0].f, &truth), "{solver:?}");
             assert_eq!(best[0].consensus, (0..points.len()).collect::<Vec<_>>());
-            let every = choose(MinimalSolutions::All, &points, all.clone(), 0.5);
+            let every = choose(
+                MinimalSolutions::All,
+                ScoringSet::all(&points),
+                all.clone(),
+                0.5,
+            );
             assert_eq!(every.iter().map(|c| c.f).collect::<Vec<_>>(), all);
         }
     }
@@ -284,7 +362,7 @@ mod tests {
         let scaled = truth * -3.0;
         let chosen = choose(
             MinimalSolutions::Best,
-            &points,
+            ScoringSet::all(&points),
             vec![worse, scaled, truth],
             2.0,
         );
@@ -319,7 +397,7 @@ mod tests {
                         MinimalSolver::FivePoint,
                         choice,
                         &subset,
-                        points,
+                        ScoringSet::all(points),
                         focal,
                         2.0,
                     )
@@ -344,6 +422,125 @@ mod tests {
                 assert_eq!(consensus, &recount, "sample {sample:?}");
             }
         }
+    }
+
+    /// The naive reference of preselection: count every candidate on the
+    /// few matches and on all of them by the distance of each match, keep
+    /// those with the top count on the few, take the first of largest full
+    /// count.
+    fn naive_preselected_best(
+        points: &Correspondences,
+        few: &[usize],
+        candidates: &[Matrix3<f64>],
+        thr2: f64,
+    ) -> Option<usize> {
+        let within = |f: &Matrix3<f64>, i: usize| {
+            geometry::sampson_distance_squared(f, points.point1(i), points.point2(i)) <= thr2
+        };
+        let on_few: Vec<usize> = candidates
+            .iter()
+            .map(|f| few.iter().filter(|&&i| within(f, i)).count())
+            .collect();
+        let top = *on_few.iter().max()?;
+        let mut best: Option<(usize, usize)> = None;
+        for (k, f) in candidates.iter().enumerate() {
+            if on_few[k] != top {
+                continue;
+            }
+            let full = (0..points.len()).filter(|&i| within(f, i)).count();
+            if best.map_or(true, |(_, b)| full > b) {
+                best = Some((k, full));
+            }
+        }
+        best.map(|(k, _)| k)
+    }
+
+    /// Preselection on a few matches chooses what the naive reference does
+    /// (five-point roots of noisy matches), with the full consensus set;
+    /// with every match as the few, it chooses as `best`.
+    #[test]
+    fn preselection_chooses_as_the_naive_reference() {
+        let (exact, _) = rigid_scene(900.0);
+        let (p1, p2): (Vec<_>, Vec<_>) = (0..exact.len())
+            .map(|i| {
+                let (a, b) = (exact.point1(i), exact.point2(i));
+                let jitter = ((i * 37 % 11) as f64 - 5.0) / 2.0;
+                (a, [b[0] + jitter, b[1] - 0.5 * jitter])
+            })
+            .unzip();
+        let points = Correspondences::new(&p1, &p2).unwrap();
+        let few_indices = [1, 4, 9, 16, 25, 36];
+        let few = points.subset(&few_indices).unwrap();
+        let scoring = ScoringSet {
+            points: &points,
+            preselect: Some(&few),
+        };
+        let everything = ScoringSet {
+            points: &points,
+            preselect: Some(&points),
+        };
+        for start in 0..30 {
+            let sample: Vec<usize> = (0..5).map(|k| (start + 7 * k) % points.len()).collect();
+            let subset = points.subset(&sample).unwrap();
+            let all = candidates(MinimalSolver::FivePoint, &subset, 1100.0);
+            let chosen = choose(MinimalSolutions::Best, scoring, all.clone(), 2.0);
+            let want = naive_preselected_best(&points, &few_indices, &all, 4.0);
+            assert_eq!(
+                chosen.first().map(|c| c.f),
+                want.map(|k| all[k]),
+                "sample {sample:?}"
+            );
+            if let Some(c) = chosen.first() {
+                let mut recount = Vec::new();
+                geometry::sampson_consensus(&c.f, &points, 4.0, 0, &mut recount);
+                assert_eq!(c.consensus, recount);
+            }
+            let plain = choose(
+                MinimalSolutions::Best,
+                ScoringSet::all(&points),
+                all.clone(),
+                2.0,
+            );
+            assert_eq!(choose(MinimalSolutions::Best, everything, all, 2.0), plain);
+        }
+    }
+
+    /// Two candidates, each exact for one half of the matches: the one that
+    /// explains more of all matches wins without preselection, the one
+    /// that explains more of the few wins with it (they are its matches).
+    #[test]
+    fn preselection_can_overrule_the_full_count() {
+        let (points, truth) = rigid_scene(900.0);
+        // The matches 0..25 moved by `truth`; 25..40 replaced by matches
+        // that `other` explains exactly (a pure translation along x).
+        let other = Matrix3::new(0.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0);
+        let (mut p1, mut p2): (Vec<_>, Vec<_>) = (0..25)
+            .map(|i| (points.point1(i), points.point2(i)))
+            .unzip();
+        for i in 25..40 {
+            let y = 30.0 * i as f64 - 900.0;
+            p1.push([3.0 * i as f64, y]);
+            p2.push([3.0 * i as f64 + 40.0, y]);
+        }
+        let points = Correspondences::new(&p1, &p2).unwrap();
+        let candidates = vec![other, truth];
+        let naive = ScoringSet::all(&points);
+        let plain = choose(MinimalSolutions::Best, naive, candidates.clone(), 1.0);
+        assert_eq!(plain[0].f, truth);
+        assert_eq!(plain[0].consensus, (0..25).collect::<Vec<_>>());
+        let few_indices = [3, 26, 30, 33, 37];
+        let few = points.subset(&few_indices).unwrap();
+        let scoring = ScoringSet {
+            points: &points,
+            preselect: Some(&few),
+        };
+        let chosen = choose(MinimalSolutions::Best, scoring, candidates.clone(), 1.0);
+        assert_eq!(chosen[0].f, other);
+        assert_eq!(chosen[0].consensus, (25..40).collect::<Vec<_>>());
+        assert_eq!(
+            naive_preselected_best(&points, &few_indices, &candidates, 1.0),
+            Some(0)
+        );
     }
 
     #[test]

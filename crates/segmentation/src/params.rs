@@ -127,6 +127,16 @@ pub struct Params {
     /// with fewer than 8 such matches is never refined (the weighted
     /// 8-point needs 8), so values up to 8 change nothing. Default 0.
     pub min_consensus: usize,
+    /// Which of a sample's solutions compete for `best`,
+    /// `best-then-polish` and `best-unpolished`: with a value K below the
+    /// number of matches, every solution is first scored on K matches drawn
+    /// at random per seed, and only those with the most of them within
+    /// `thr_px` are scored on all matches (preemptive scoring: Nistér,
+    /// ICCV 2003; Matas & Chum's T(d,d) test, BMVC 2002). A five-point
+    /// sample has four roots on average and one survives, so the losers
+    /// cost K matches each instead of up to N. `0`: every solution scored
+    /// on all matches. Default 0.
+    pub preselect_matches: usize,
     /// How the matches of a minimal sample are drawn (step 1): `uniform`
     /// (the thesis) or `localized` (the first uniformly, the others among
     /// its nearest matches in image 1: NAPSAC, Torr et al. 2002, as
@@ -247,6 +257,7 @@ impl Params {
             minimal_solver: MinimalSolver::EightPoint,
             minimal_solutions: MinimalSolutions::Best,
             min_consensus: 0,
+            preselect_matches: 0,
             sampling: Sampling::Uniform,
             focal_solver: FocalSolver::Kocur,
             weight_sets: WeightSets::Preset(WeightPreset::Adelaidermf),
@@ -269,7 +280,7 @@ impl Params {
 }
 
 /// The keys of [`Params`] in declaration order.
-pub const PARAM_KEYS: [&str; 35] = [
+pub const PARAM_KEYS: [&str; 36] = [
     "method",
     "num_samples",
     "adaptive_batch",
@@ -288,6 +299,7 @@ pub const PARAM_KEYS: [&str; 35] = [
     "minimal_solver",
     "minimal_solutions",
     "min_consensus",
+    "preselect_matches",
     "sampling",
     "focal_solver",
     "weight_sets",
@@ -437,6 +449,7 @@ impl Params {
             minimal_solver: self.minimal_solver,
             minimal_solutions: self.minimal_solutions,
             min_consensus: self.min_consensus,
+            preselect_matches: self.preselect_matches,
             sampling: self.sampling,
             refine: self.refine,
             thr_px_bits: self.thr_px.to_bits(),
@@ -502,6 +515,7 @@ pub struct HypothesisKey {
     minimal_solver: MinimalSolver,
     minimal_solutions: MinimalSolutions,
     min_consensus: usize,
+    preselect_matches: usize,
     sampling: Sampling,
     refine: bool,
     thr_px_bits: u64,
@@ -631,6 +645,11 @@ mod tests {
             ..a.clone()
         };
         assert_ne!(a.hypothesis_key(), subset.hypothesis_key());
+        let preselect = Params {
+            preselect_matches: 32,
+            ..a.clone()
+        };
+        assert_ne!(a.hypothesis_key(), preselect.hypothesis_key());
         let refit = Params {
             final_assignment: FinalAssignment::Refit,
             ..a.clone()

@@ -58,6 +58,8 @@ EXPERIMENT FILE (TOML)
                                the winner left unpolished)
   min_consensus = 0            solutions with fewer matches within thr_px are
                                dropped before refinement (not eight-point)
+  preselect_matches = 0        K > 0: a sample's solutions scored on K random
+                               matches first, the top ones on all (best*)
   sampling = \"uniform\"        uniform | localized (the others among the first
                                match's nearest in image 1: NAPSAC) | mixed
                                (the two in turn)
