@@ -24,6 +24,7 @@ VARIANTS = [
     # A profile as the base: `profile` in the [pipeline] table, and a keyword.
     {"profile": "thesis", "tau_range": 0.25},
     {"profile": "fast"},
+    {"profile": "fast", "preselect_matches": 24, "min_consensus": 10},
 ]
 
 
