@@ -3,9 +3,9 @@
 
 use crate::adaptive::{stop_after, SupportTracker};
 use crate::minimal::{solve_and_choose, ScoringSet};
+use crate::subset::sorted_draw;
 use crate::{
-    hypothesis_rng, subset_indices, EightPoint, Matches, MinimalSampler, MinimalSolver, Params,
-    SegmentationError,
+    subset_indices, EightPoint, Matches, MinimalSampler, MinimalSolver, Params, SegmentationError,
 };
 use geometry::{eight_point_normalized, eight_point_plain, Correspondences, IrlsWorkspace};
 use nalgebra::Matrix3;
@@ -142,7 +142,7 @@ pub fn generate_hypotheses(
 }
 
 /// The matches of [`Params::preselect_matches`]: that many of `points`,
-/// drawn uniformly from stream 2⁶⁴ − 2 of [`hypothesis_rng`] (no hypothesis
+/// drawn uniformly from stream 2⁶⁴ − 2 of [`crate::hypothesis_rng`] (no hypothesis
 /// draws from it, nor does [`subset_indices`]); `None` when the key is 0 or
 /// not below the number of points.
 fn preselect_subset(
@@ -153,11 +153,8 @@ fn preselect_subset(
     if size == 0 || size >= n {
         return Ok(None);
     }
-    let mut rng = hypothesis_rng(params.seed, usize::MAX - 1);
-    let mut indices = rand::seq::index::sample(&mut rng, n, size).into_vec();
-    indices.sort_unstable();
     points
-        .subset(&indices)
+        .subset(&sorted_draw(params.seed, usize::MAX - 1, n, size))
         .map(Some)
         .map_err(SegmentationError::InvalidPoints)
 }

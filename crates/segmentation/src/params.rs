@@ -129,7 +129,8 @@ pub struct Params {
     pub min_consensus: usize,
     /// Which of a sample's solutions compete for `best`,
     /// `best-then-polish` and `best-unpolished`: with a value K below the
-    /// number of matches, every solution is first scored on K matches drawn
+    /// number of matches the samples are drawn from (all, or
+    /// `cluster_subset` of them), every solution is first scored on K matches drawn
     /// at random per seed, and only those with the most of them within
     /// `thr_px` are scored on all matches (preemptive scoring: Nistér,
     /// ICCV 2003; Matas & Chum's T(d,d) test, BMVC 2002). A five-point

@@ -37,7 +37,13 @@ pub fn subset_indices(seed: u64, n: usize, size: usize) -> Vec<usize> {
     if size == 0 || size >= n {
         return (0..n).collect();
     }
-    let mut rng = hypothesis_rng(seed, usize::MAX);
+    sorted_draw(seed, usize::MAX, n, size)
+}
+
+/// `size` distinct indices of `0..n` (`size ≤ n`) drawn uniformly from
+/// stream `stream` of [`hypothesis_rng`], increasing.
+pub(crate) fn sorted_draw(seed: u64, stream: usize, n: usize, size: usize) -> Vec<usize> {
+    let mut rng = hypothesis_rng(seed, stream);
     let mut indices = rand::seq::index::sample(&mut rng, n, size).into_vec();
     indices.sort_unstable();
     indices
