@@ -5,7 +5,8 @@ use crate::adaptive::{stop_after, SupportTracker};
 use crate::minimal::{solve_and_choose, ScoringSet};
 use crate::subset::sorted_draw;
 use crate::{
-    subset_indices, EightPoint, Matches, MinimalSampler, MinimalSolver, Params, SegmentationError,
+    subset_indices, CoInlierKernel, CoInliers, EightPoint, Matches, MinimalSampler, MinimalSolver,
+    Params, Sampling, SegmentationError,
 };
 use geometry::{eight_point_normalized, eight_point_plain, Correspondences, IrlsWorkspace};
 use nalgebra::Matrix3;
@@ -104,10 +105,13 @@ pub fn generate_hypotheses(
         points: &points,
         preselect: preselect.as_ref(),
     };
+    let guided = params.sampling == Sampling::Guided;
     let batch = match params.adaptive_batch {
+        0 if guided => params.guided_batch,
         0 => params.num_samples,
         b => b,
     };
+    let mut co_inliers = guided.then(|| CoInliers::new(points.len(), params.num_samples));
     let mut tracker =
         (params.adaptive_batch > 0).then(|| SupportTracker::new(points.len(), params.thr_px));
     let (mut fitted, mut models) = (Vec::new(), Vec::new());
@@ -115,10 +119,23 @@ pub fn generate_hypotheses(
     for (b, start) in (0..params.num_samples).step_by(batch).enumerate() {
         let samples = start..(start + batch).min(params.num_samples);
         let t = Instant::now();
-        let fits = match params.minimal_solver {
-            MinimalSolver::EightPoint => fit_minimal_samples(&points, &sampler, samples, params),
-            _ => solve_minimal_samples(scoring, &sampler, samples, params, matches.focal_prior),
+        let draw = Draw {
+            sampler: &sampler,
+            // Guided after the first batch, by the hypotheses before.
+            guide: co_inliers
+                .as_mut()
+                .filter(|co| !co.is_empty())
+                .map(|co| co.kernel()),
         };
+        let fits = match params.minimal_solver {
+            MinimalSolver::EightPoint => fit_minimal_samples(&points, draw, samples, params),
+            _ => solve_minimal_samples(scoring, draw, samples, params, matches.focal_prior),
+        };
+        if let Some(co) = co_inliers.as_mut() {
+            for fit in &fits {
+                co.add(fit.as_ref().map_or(&[], |f| &f.start));
+            }
+        }
         sampling_seconds += t.elapsed().as_secs_f64();
 
         let t = Instant::now();
@@ -167,11 +184,26 @@ struct SampleFit {
     f: Matrix3<f64>,
 }
 
+/// Where the samples come from: the scene's sampler and, for guided
+/// sampling after its first batch, the co-inlier counts of the hypotheses
+/// so far.
+#[derive(Clone, Copy)]
+struct Draw<'a> {
+    sampler: &'a MinimalSampler,
+    guide: Option<&'a CoInlierKernel>,
+}
+
+impl Draw<'_> {
+    fn sample(&self, seed: u64, index: usize, size: usize) -> Vec<usize> {
+        self.sampler.sample_guided(self.guide, seed, index, size)
+    }
+}
+
 /// Steps 1–2: each minimal sample and its 8-point fit (None when the sample
 /// is degenerate or the fit not finite).
 fn fit_minimal_samples(
     points: &Correspondences,
-    sampler: &MinimalSampler,
+    sampler: Draw,
     samples: Range<usize>,
     params: &Params,
 ) -> Vec<Option<SampleFit>> {
@@ -198,7 +230,7 @@ fn fit_minimal_samples(
 /// `K(f)`.
 fn solve_minimal_samples(
     scoring: ScoringSet,
-    sampler: &MinimalSampler,
+    sampler: Draw,
     samples: Range<usize>,
     params: &Params,
     focal: f64,

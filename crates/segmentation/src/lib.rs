@@ -35,6 +35,7 @@ mod assignment;
 mod error;
 mod filter;
 mod focals;
+mod guided;
 mod hypotheses;
 mod input;
 mod merge;
@@ -56,6 +57,7 @@ pub use focal::FocalConsensus;
 pub use focals::{
     estimate_focals, estimate_hypothesis_focals, focals_as_used, FocalAnswer, HypothesisFocals,
 };
+pub use guided::{CoInlierKernel, CoInliers};
 pub use hypotheses::{centred_points, generate_hypotheses, GeneratedHypotheses};
 pub use input::{image_centre, Matches};
 pub use merge::{merge_explained, InlierBits, MERGE_SHARE};

@@ -7,7 +7,7 @@
 //! ([`Sampling::Localized`]) draws from the same streams; its neighbourhoods
 //! are computed once per scene ([`MinimalSampler::new`]).
 
-use crate::Sampling;
+use crate::{CoInlierKernel, Sampling};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
@@ -121,7 +121,7 @@ impl MinimalSampler {
             n,
             neighbours,
             k,
-            mixed: sampling == Sampling::Mixed,
+            mixed: matches!(sampling, Sampling::Mixed | Sampling::Guided),
         }
     }
 
@@ -131,6 +131,25 @@ impl MinimalSampler {
             &[]
         } else {
             &self.neighbours[i * self.k..(i + 1) * self.k]
+        }
+    }
+
+    /// The sample of hypothesis `index` as [`sample`](Self::sample) draws
+    /// it, except that with a `guide` the even (uniform) turns of mixed
+    /// sampling are guided ([`CoInlierKernel::sample`], from stream `index`
+    /// of [`hypothesis_rng`]).
+    pub fn sample_guided(
+        &self,
+        guide: Option<&CoInlierKernel>,
+        seed: u64,
+        index: usize,
+        size: usize,
+    ) -> Vec<usize> {
+        match guide {
+            Some(kernel) if self.mixed && index % 2 == 0 => {
+                kernel.sample(&mut hypothesis_rng(seed, index), size)
+            }
+            _ => self.sample(seed, index, size),
         }
     }
 
@@ -269,6 +288,31 @@ mod tests {
                 mixed.sample(3, j, 5),
                 expected.sample(3, j, 5),
                 "sample {j}"
+            );
+        }
+    }
+
+    #[test]
+    fn guided_sampling_replaces_the_uniform_turns_of_mixed() {
+        let points = grid_points(120, 6);
+        let mixed = MinimalSampler::new(&points, Sampling::Mixed, 5);
+        let guided = MinimalSampler::new(&points, Sampling::Guided, 5);
+        let mut co = crate::CoInliers::new(120, 30);
+        for h in 0..30 {
+            co.add(&(h..h + 40).collect::<Vec<_>>());
+        }
+        let kernel = co.kernel();
+        for j in 0..60 {
+            assert_eq!(guided.sample_guided(None, 3, j, 5), mixed.sample(3, j, 5));
+            let expected = if j % 2 == 0 {
+                kernel.sample(&mut hypothesis_rng(3, j), 5)
+            } else {
+                mixed.sample(3, j, 5)
+            };
+            assert_eq!(
+                guided.sample_guided(Some(kernel), 3, j, 5),
+                expected,
+                "{j}"
             );
         }
     }

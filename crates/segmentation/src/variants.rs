@@ -156,6 +156,11 @@ param_enum! {
         /// that structures spread over the image and compact ones both get
         /// samples.
         Mixed,
+        /// Mixed for the first batch of [`crate::Params::guided_batch`] samples;
+        /// after it the even (uniform) turns are guided by the hypotheses
+        /// drawn so far ([`crate::CoInlierKernel`], Multi-GS of Chin, Yu
+        /// & Suter 2012), the odd ones stay localized.
+        Guided,
     }
 }
 

@@ -540,6 +540,42 @@ fn localized_sampling_does_not_depend_on_the_thread_count() {
 }
 
 #[test]
+fn guided_sampling_starts_as_mixed_and_does_not_depend_on_the_thread_count() {
+    use segmentation::{generate_hypotheses, Sampling};
+    let scene = quick_scene(2, 901);
+    let mixed = Params {
+        num_samples: 300,
+        sampling: Sampling::Mixed,
+        ..Params::fast()
+    };
+    let guided = Params {
+        sampling: Sampling::Guided,
+        guided_batch: 100,
+        ..mixed.clone()
+    };
+    let h1 = in_pool(1, || {
+        generate_hypotheses(&matches(&scene), &guided).unwrap()
+    });
+    let h2 = in_pool(2, || {
+        generate_hypotheses(&matches(&scene), &guided).unwrap()
+    });
+    assert_eq!((&h1.models, &h1.fitted), (&h2.models, &h2.fitted));
+    let m = generate_hypotheses(&matches(&scene), &mixed).unwrap();
+    // The first batch is mixed sampling's; the guided turns after it differ.
+    assert_eq!(h1.models[..100], m.models[..100]);
+    assert_ne!(h1.models[100..], m.models[100..]);
+    let one = in_pool(1, || segment(&scene, &guided).unwrap());
+    let two = in_pool(2, || segment(&scene, &guided).unwrap());
+    assert_eq!(one.labels, two.labels);
+    assert!(me(&scene, &one) < 0.05, "ME {}", me(&scene, &one));
+    let zero = Params {
+        guided_batch: 0,
+        ..guided
+    };
+    assert!(segment(&scene, &zero).is_err());
+}
+
+#[test]
 fn a_size_rule_above_the_floor_only_removes_clusters() {
     use segmentation::SizeRule;
     let scene = quick_scene(2, 900);

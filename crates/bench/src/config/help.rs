@@ -62,7 +62,10 @@ EXPERIMENT FILE (TOML)
                                matches first, the top ones on all (best*)
   sampling = \"uniform\"        uniform | localized (the others among the first
                                match's nearest in image 1: NAPSAC) | mixed
-                               (the two in turn)
+                               (the two in turn) | guided (mixed, then the
+                               uniform turns drawn by the co-inlier counts
+                               of the hypotheses so far: Multi-GS)
+  guided_batch = 100           samples per batch of guided (the first: mixed)
   focal_solver = \"kocur\"       kocur | bougnoux | external (read from focal_file)
   focal_file = \"f{seed}.csv\"   focal_solver = \"external\": CSV of scene,hypothesis,f1,f2
   weight_sets = \"adelaidermf\"  adelaidermf | hopef | [[w_f1, w_pp1, w_f2, w_pp2], ...]
