@@ -8,8 +8,9 @@
 //! and outliers (−1):
 //!
 //! 1. M minimal samples, drawn per hypothesis from its own random stream,
-//!    uniformly ([`minimal_sample`]) or localized ([`MinimalSampler`]),
-//!    M fixed or adaptive ([`SupportTracker`]);
+//!    uniformly ([`minimal_sample`]), localized ([`MinimalSampler`]) or
+//!    guided by the hypotheses so far ([`CoInlierKernel`]), M fixed or
+//!    adaptive ([`SupportTracker`]);
 //! 2. the 8-point F of each (Hartley-normalised or plain, [`EightPoint`]);
 //! 3. IRLS-Tukey refinement ([`generate_hypotheses`]);
 //! 4. focal lengths of each F ([`estimate_hypothesis_focals`]: the robust

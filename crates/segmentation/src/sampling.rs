@@ -309,11 +309,7 @@ mod tests {
             } else {
                 mixed.sample(3, j, 5)
             };
-            assert_eq!(
-                guided.sample_guided(Some(kernel), 3, j, 5),
-                expected,
-                "{j}"
-            );
+            assert_eq!(guided.sample_guided(Some(kernel), 3, j, 5), expected, "{j}");
         }
     }
 

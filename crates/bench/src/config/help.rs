@@ -29,7 +29,7 @@ EXPERIMENT FILE (TOML)
   profile = \"default\"          default | thesis | fast | large: the values of every key
                                not given here (default: those below; thesis:
                                the thesis text's; fast: fewer samples and IRLS
-                               iterations, mixed sampling, 200 matches
+                               iterations, guided sampling, 200 matches
                                clustered; large: localized sampling, clusters
                                under 2 % of N dropped). Not a [sweep] key
   method = \"baseline\"          baseline (no focal filter) | semical (Algorithm 1)
