@@ -8,8 +8,9 @@
 //! them. So after a batch of hypotheses, a sample whose first match is
 //! drawn uniformly takes each next match with probability proportional to
 //! the product, over the matches already drawn, of the number of
-//! hypotheses that hold both (Eq. 9 of Chin et al. with their kernel
-//! replaced by that count).
+//! hypotheses that hold both (Chin et al.'s conditional sampling rule, a
+//! product of kernel values, with their intersection kernel of top-h
+//! hypothesis lists replaced by that count).
 
 use rand::Rng;
 
