@@ -203,14 +203,14 @@ impl Draw<'_> {
 /// is degenerate or the fit not finite).
 fn fit_minimal_samples(
     points: &Correspondences,
-    sampler: Draw,
+    draw: Draw,
     samples: Range<usize>,
     params: &Params,
 ) -> Vec<Option<SampleFit>> {
     samples
         .into_par_iter()
         .map(|j| {
-            let sample = sampler.sample(params.seed, j, params.mss_size);
+            let sample = draw.sample(params.seed, j, params.mss_size);
             let subset = points.subset(&sample).ok()?;
             let f = match params.eight_point {
                 EightPoint::Normalized => eight_point_normalized(&subset),
@@ -230,7 +230,7 @@ fn fit_minimal_samples(
 /// `K(f)`.
 fn solve_minimal_samples(
     scoring: ScoringSet,
-    sampler: Draw,
+    draw: Draw,
     samples: Range<usize>,
     params: &Params,
     focal: f64,
@@ -239,7 +239,7 @@ fn solve_minimal_samples(
     let per_sample: Vec<Vec<Option<SampleFit>>> = samples
         .into_par_iter()
         .map(|j| {
-            let sample = sampler.sample(params.seed, j, size);
+            let sample = draw.sample(params.seed, j, size);
             let chosen = match scoring.points.subset(&sample) {
                 Ok(subset) => solve_and_choose(
                     params.minimal_solver,
