@@ -15,9 +15,11 @@ pub const METADATA_FILE: &str = "synthetic.toml";
 pub struct Args {
     /// Preset: hopef-like (4 x 100 scenes), quick (4 small scenes),
     /// kitti-like (background + movers, 20 scenes), hopef (HOPE-F's own
-    /// process, 4 x 1000 scenes with train/val/test folders) or kitti-real
+    /// process, 4 x 1000 scenes with train/val/test folders), kitti-real
     /// (1242 x 375 driving scenes of 1000-5000 matches, 2 x 1000 scenes with
-    /// train/val/test folders).
+    /// train/val/test folders) or adelaide-like (HOPE-F's process at
+    /// AdelaideRMF's image size, outlier shares and inliers per motion,
+    /// 4 x 1000 scenes with train/val/test folders).
     #[arg(long, default_value = "hopef-like")]
     pub preset: String,
     /// Output directory (created; must be empty unless --force).

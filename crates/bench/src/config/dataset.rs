@@ -58,7 +58,8 @@ pub struct DatasetConfig {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub index_range: Option<[u32; 2]>,
     /// Synthetic generator preset, one of [`datasets::synthetic::Preset::ALL`] by
-    /// name (`quick`, `hopef-like`, `kitti-like`, `hopef`). Default `quick`.
+    /// name (`quick`, `hopef-like`, `kitti-like`, `hopef`, `kitti-real`,
+    /// `adelaide-like`). Default `quick`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub preset: Option<String>,
     /// Synthetic generator seed. Default 1.

@@ -33,6 +33,15 @@ pub enum Preset {
     /// by index mod 4; folders 0000–0999 split as HOPE-F's (train 0000–0799,
     /// validation 0800–0899, test 0900–0999): 2000 scenes.
     KittiReal,
+    /// `adelaide-like`: HOPE-F's process ([`crate::hopef_synth`]) with the
+    /// descriptive statistics of AdelaideRMF's 19 F scenes (N 165–360,
+    /// 27–73 % outliers, mean 43 %, 35–146 inliers per motion, 640 × 480
+    /// px): a 640 × 480 image, 25–75 % mismatches asked for (47 % outliers on
+    /// average, 22–68 %), a match rate of 0.6 (which leaves enough unmatched
+    /// keypoints for that share), texture 200–800 features per unit² and at
+    /// least 35 matches per object ([`Preset::adelaide_like_params`]).
+    /// Categories 1–4 × folders 0000–0999 split as HOPE-F's: 4000 scenes.
+    AdelaideLike,
 }
 
 /// The parameters of a preset's generator.
@@ -83,12 +92,13 @@ impl PresetParams {
 
 impl Preset {
     /// All presets.
-    pub const ALL: [Preset; 5] = [
+    pub const ALL: [Preset; 6] = [
         Preset::HopefLike,
         Preset::Quick,
         Preset::KittiLike,
         Preset::Hopef,
         Preset::KittiReal,
+        Preset::AdelaideLike,
     ];
 
     /// The preset's name (`hopef-like`, `quick`, `kitti-like`, `hopef`,
@@ -100,6 +110,7 @@ impl Preset {
             Preset::KittiLike => "kitti-like",
             Preset::Hopef => "hopef",
             Preset::KittiReal => "kitti-real",
+            Preset::AdelaideLike => "adelaide-like",
         }
     }
 
@@ -132,7 +143,30 @@ impl Preset {
             },
             Preset::Hopef => return PresetParams::Hopef(HopefParams::default()),
             Preset::KittiReal => return PresetParams::Driving(DrivingParams::default()),
+            Preset::AdelaideLike => return PresetParams::Hopef(Self::adelaide_like_params()),
         })
+    }
+
+    /// The `adelaide-like` preset's parameters: the `hopef` preset's with
+    /// five fields set from AdelaideRMF's descriptive statistics (its image
+    /// size, outlier shares and inliers per motion; nothing measured of a
+    /// method on it).
+    ///
+    /// ```
+    /// use datasets::synthetic::Preset;
+    /// let p = Preset::adelaide_like_params();
+    /// assert_eq!(p.image_size, [640, 480]);
+    /// assert_eq!(p.min_inliers_per_object, 35);
+    /// ```
+    pub fn adelaide_like_params() -> HopefParams {
+        HopefParams {
+            image_size: [640, 480],
+            mismatch_share: [0.25, 0.75],
+            match_rate: 0.6,
+            texture_density: [200.0, 800.0],
+            min_inliers_per_object: 35,
+            ..HopefParams::default()
+        }
     }
 
     /// Reads a table of this preset's generator parameters (e.g. its own,
@@ -157,7 +191,7 @@ impl Preset {
     /// The category folders (numbers of moving objects).
     pub fn categories(self) -> Vec<u32> {
         match self {
-            Preset::HopefLike | Preset::Hopef => vec![1, 2, 3, 4],
+            Preset::HopefLike | Preset::Hopef | Preset::AdelaideLike => vec![1, 2, 3, 4],
             Preset::Quick | Preset::KittiLike | Preset::KittiReal => vec![1, 2],
         }
     }
@@ -168,7 +202,7 @@ impl Preset {
             Preset::HopefLike => 900..=999,
             Preset::Quick => 900..=901,
             Preset::KittiLike => 900..=909,
-            Preset::Hopef | Preset::KittiReal => 0..=999,
+            Preset::Hopef | Preset::KittiReal | Preset::AdelaideLike => 0..=999,
         }
     }
 
