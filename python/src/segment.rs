@@ -35,7 +35,7 @@ use std::fmt::Write as _;
 ///     method="semical", minimal_solver="eight-point"), "fast" (fewer
 ///     samples and IRLS iterations, guided sampling, 200 matches clustered
 ///     and the others joined: 20-80 times faster per scene, within 2
-///     points of the default's ME on the synthetic test data, 5.7 % against
+///     points of the default's ME on the synthetic test data, 5.9 % against
 ///     4.1 % on AdelaideRMF) or "large" (1 000 matches and more: localized sampling,
 ///     clusters under 2 % of the matches dropped). ``sctl.default_params(profile)`` lists its values.
 /// seed : int, default 12345
