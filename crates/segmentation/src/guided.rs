@@ -28,7 +28,8 @@ pub struct CoInliers {
 }
 
 impl CoInliers {
-    /// Room for `capacity` hypotheses over `n` matches, none added.
+    /// Room for `capacity` hypotheses over `n` matches (more grow it),
+    /// none added.
     pub fn new(n: usize, capacity: usize) -> Self {
         let words = capacity.div_ceil(64).max(1);
         Self {
@@ -44,11 +45,11 @@ impl CoInliers {
     }
 
     /// Adds the next hypothesis, holding the matches `consensus` (indices
-    /// below `n`; others are ignored). Past the capacity, nothing is added.
+    /// below `n`; others are ignored). Past the capacity, the rows grow.
     pub fn add(&mut self, consensus: &[usize]) {
         let h = self.hypotheses;
         if h >= 64 * self.words {
-            return;
+            self.grow();
         }
         let (word, bit) = (h / 64, 1u64 << (h % 64));
         let n = self.kernel.n;
@@ -56,6 +57,18 @@ impl CoInliers {
             self.bits[i * self.words + word] |= bit;
         }
         self.hypotheses += 1;
+    }
+
+    /// Doubles the words of every match's row, keeping its bits.
+    fn grow(&mut self) {
+        let (n, old) = (self.kernel.n, self.words);
+        let new = 2 * old;
+        let mut bits = vec![0; n * new];
+        for (row, old_row) in bits.chunks_exact_mut(new).zip(self.bits.chunks_exact(old)) {
+            row[..old].copy_from_slice(old_row);
+        }
+        self.bits = bits;
+        self.words = new;
     }
 
     /// Adds a hypothesis that holds nothing (a sample without a fit), so
@@ -237,16 +250,27 @@ mod tests {
     }
 
     #[test]
-    fn past_the_capacity_hypotheses_are_ignored() {
-        let mut co = CoInliers::new(3, 64);
-        for _ in 0..64 {
-            co.add(&[0, 1]);
+    fn past_the_capacity_the_rows_grow_and_keep_counting() {
+        // Room for 10, 150 added (two growths), counted before and after.
+        let (n, count) = (37, 150);
+        let sets = random_sets(n, count, 9);
+        let mut grown = CoInliers::new(n, 10);
+        let mut sized = CoInliers::new(n, count);
+        for (h, s) in sets.iter().enumerate() {
+            grown.add(s);
+            sized.add(s);
+            if h == 70 {
+                grown.kernel();
+            }
         }
-        co.add(&[0, 1, 2]);
-        co.skip();
-        let kernel = co.kernel();
-        assert_eq!(kernel.count(0, 1), 64.0);
-        assert_eq!(kernel.count(0, 2), 0.0);
+        grown.skip();
+        assert_eq!(grown.len(), count + 1);
+        let (a, b) = (grown.kernel().clone(), sized.kernel());
+        assert_eq!(a.counts, b.counts);
+        // The hypotheses past the first 64 are in the counts.
+        let mut first = CoInliers::new(n, 64);
+        sets[..64].iter().for_each(|s| first.add(s));
+        assert_ne!(a.counts, first.kernel().counts);
     }
 
     #[test]

@@ -576,6 +576,31 @@ fn guided_sampling_starts_as_mixed_and_does_not_depend_on_the_thread_count() {
 }
 
 #[test]
+fn guided_sampling_with_every_five_point_root_counts_past_m() {
+    use segmentation::{generate_hypotheses, MinimalSolutions, Sampling};
+    // Several hypotheses per sample: more than M go into the counts, and
+    // the result still does not depend on the thread count.
+    let scene = quick_scene(2, 900);
+    let params = Params {
+        num_samples: 120,
+        sampling: Sampling::Guided,
+        guided_batch: 60,
+        minimal_solutions: MinimalSolutions::All,
+        ..Params::fast()
+    };
+    let h1 = in_pool(1, || {
+        generate_hypotheses(&matches(&scene), &params).unwrap()
+    });
+    let h2 = in_pool(2, || {
+        generate_hypotheses(&matches(&scene), &params).unwrap()
+    });
+    assert!(h1.models.len() > 120, "{} hypotheses", h1.models.len());
+    assert_eq!((&h1.models, &h1.fitted), (&h2.models, &h2.fitted));
+    let seg = segment(&scene, &params).unwrap();
+    assert!(me(&scene, &seg) < 0.1, "ME {}", me(&scene, &seg));
+}
+
+#[test]
 fn a_size_rule_above_the_floor_only_removes_clusters() {
     use segmentation::SizeRule;
     let scene = quick_scene(2, 900);
