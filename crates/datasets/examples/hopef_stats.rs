@@ -3,15 +3,17 @@
 //! localisation error) as Markdown tables.
 //!
 //! ```text
-//! cargo run --release -p datasets --example hopef_stats -- [--seed 1] [--split test|val|train] [--params FILE.toml]
+//! cargo run --release -p datasets --example hopef_stats -- [--seed 1] [--split test|val|train] [--preset hopef|adelaide-like] [--params FILE.toml]
 //! ```
 //!
 //! `--seed` is the generator seed (`[dataset] generator_seed`, default 1);
-//! `--params` a TOML file of `HopefParams` fields overriding the preset's.
+//! `--preset` a preset of the HOPE-F-faithful generator (default `hopef`);
+//! `--params` a TOML file of `HopefParams` fields overriding `hopef`'s.
 
 use datasets::hopef::Split;
 use datasets::hopef_synth::stats::HopefStats;
 use datasets::hopef_synth::{generate_scene, HopefParams};
+use datasets::synthetic::{Preset, PresetParams};
 use std::process::ExitCode;
 
 struct Options {
@@ -31,13 +33,22 @@ fn parse(mut args: impl Iterator<Item = String>) -> Result<Options, String> {
         match flag.as_str() {
             "--seed" => options.seed = value.parse().map_err(|e| format!("--seed {value}: {e}"))?,
             "--split" => options.split = value.parse()?,
+            "--preset" => {
+                let preset = Preset::from_name(&value).ok_or(format!("unknown preset {value}"))?;
+                let PresetParams::Hopef(params) = preset.params() else {
+                    return Err(format!(
+                        "{value} does not use the HOPE-F-faithful generator"
+                    ));
+                };
+                options.params = params;
+            }
             "--params" => {
                 let text = std::fs::read_to_string(&value).map_err(|e| format!("{value}: {e}"))?;
                 options.params = toml::from_str(&text).map_err(|e| format!("{value}: {e}"))?;
             }
             other => {
                 return Err(format!(
-                    "unknown option {other} (--seed, --split, --params)"
+                    "unknown option {other} (--seed, --split, --preset, --params)"
                 ))
             }
         }
