@@ -5,8 +5,8 @@ mod support;
 use datasets::Scene;
 use metrics::ClusteringMetrics;
 use segmentation::{
-    EightPoint, FocalSolver, HypothesisStatus, Linkage, LocalTest, Method, OnFailure, Params,
-    Segmentation, SegmentationError,
+    EightPoint, FocalSolver, GeneratedHypotheses, HypothesisStatus, Linkage, LocalTest, Method,
+    OnFailure, Params, Segmentation, SegmentationError,
 };
 use support::{in_pool, matches, quick_scene};
 
@@ -21,6 +21,15 @@ fn config(method: Method) -> Params {
 
 fn segment(scene: &Scene, params: &Params) -> Result<Segmentation, SegmentationError> {
     segmentation::segment(&matches(scene), params)
+}
+
+/// The scene's hypotheses generated on one thread and on two.
+fn hypotheses_on_one_and_two_threads(
+    scene: &Scene,
+    params: &Params,
+) -> (GeneratedHypotheses, GeneratedHypotheses) {
+    let generate = || segmentation::generate_hypotheses(&matches(scene), params).unwrap();
+    (in_pool(1, generate), in_pool(2, generate))
 }
 
 fn me(scene: &Scene, seg: &Segmentation) -> f64 {
@@ -526,12 +535,7 @@ fn localized_sampling_does_not_depend_on_the_thread_count() {
         assert_eq!(one.labels, two.labels);
         assert_eq!(one.hypotheses, two.hypotheses);
         assert_eq!(one.clusters, two.clusters);
-        let h1 = in_pool(1, || {
-            segmentation::generate_hypotheses(&matches(&scene), &params).unwrap()
-        });
-        let h2 = in_pool(2, || {
-            segmentation::generate_hypotheses(&matches(&scene), &params).unwrap()
-        });
+        let (h1, h2) = hypotheses_on_one_and_two_threads(&scene, &params);
         assert_eq!(h1.models, h2.models);
         let uniform = segmentation::generate_hypotheses(&matches(&scene), &base).unwrap();
         assert_ne!(h1.models, uniform.models);
@@ -553,12 +557,7 @@ fn guided_sampling_starts_as_mixed_and_does_not_depend_on_the_thread_count() {
         guided_batch: 100,
         ..mixed.clone()
     };
-    let h1 = in_pool(1, || {
-        generate_hypotheses(&matches(&scene), &guided).unwrap()
-    });
-    let h2 = in_pool(2, || {
-        generate_hypotheses(&matches(&scene), &guided).unwrap()
-    });
+    let (h1, h2) = hypotheses_on_one_and_two_threads(&scene, &guided);
     assert_eq!((&h1.models, &h1.fitted), (&h2.models, &h2.fitted));
     let m = generate_hypotheses(&matches(&scene), &mixed).unwrap();
     // The first batch is mixed sampling's; the guided turns after it differ.
@@ -577,7 +576,7 @@ fn guided_sampling_starts_as_mixed_and_does_not_depend_on_the_thread_count() {
 
 #[test]
 fn guided_sampling_with_every_five_point_root_counts_past_m() {
-    use segmentation::{generate_hypotheses, MinimalSolutions, Sampling};
+    use segmentation::{MinimalSolutions, Sampling};
     // Several hypotheses per sample: more than M go into the counts, and
     // the result still does not depend on the thread count.
     let scene = quick_scene(2, 900);
@@ -588,12 +587,7 @@ fn guided_sampling_with_every_five_point_root_counts_past_m() {
         minimal_solutions: MinimalSolutions::All,
         ..Params::fast()
     };
-    let h1 = in_pool(1, || {
-        generate_hypotheses(&matches(&scene), &params).unwrap()
-    });
-    let h2 = in_pool(2, || {
-        generate_hypotheses(&matches(&scene), &params).unwrap()
-    });
+    let (h1, h2) = hypotheses_on_one_and_two_threads(&scene, &params);
     assert!(h1.models.len() > 120, "{} hypotheses", h1.models.len());
     assert_eq!((&h1.models, &h1.fitted), (&h2.models, &h2.fitted));
     let seg = segment(&scene, &params).unwrap();
