@@ -5,13 +5,14 @@ candidate, its ME (thesis protocol) as the mean over seeds on each
 validation set, its excess over the default's mean there, and whether it
 passes (excess <= MARGIN on every set); then the candidate the rule takes.
 
-    python3 scripts/validation_rule.py MARGIN SET ... [--order KEY=ORDER,...]
+    python3 scripts/validation_rule.py MARGIN SET ...
 
 Each SET is `name:DEFAULT_RUN:CANDIDATE_RUN[+CANDIDATE_RUN...]`, run
 directories under results/. A candidate is one combination of the swept
 keys other than `seed` in a candidate run's summary.csv plus that run's
-fixed `sampling` and `num_samples` (from its config.toml); the same
-candidates must appear on every set. The rule takes the cheapest passing
+fixed `sampling`, `num_samples` and `guided_batch` (from its config.toml;
+the batch only for guided sampling); the same candidates must appear on
+every set. The rule takes the cheapest passing
 candidate: the smallest num_samples, then guided before mixed, then the
 larger guided_batch; when none passes, the one whose largest excess is
 smallest. Example (the third guided round):
@@ -90,13 +91,14 @@ def main(argv):
     header = ["candidate"] + [f"{n} (default {ref:.2f})" for n, ref, _ in sets] + ["passes"]
     print("| " + " | ".join(header) + " |")
     print("|" + "---|" * len(header))
+    by_cost = sorted(common, key=cost_order)
     worst = {}
-    for c in sorted(common, key=cost_order):
+    for c in by_cost:
         excess = [cands[c] - ref for _, ref, cands in sets]
         worst[c] = max(excess)
         cells = [f"{cands[c]:.2f} ({e:+.2f})" for (_, _, cands), e in zip(sets, excess)]
         print(f"| {label(c)} | " + " | ".join(cells) + f" | {'yes' if worst[c] <= margin else 'no'} |")
-    passing = [c for c in sorted(common, key=cost_order) if worst[c] <= margin]
+    passing = [c for c in by_cost if worst[c] <= margin]
     if passing:
         print(f"\nchosen (cheapest passing): {label(passing[0])}")
     else:
