@@ -61,7 +61,7 @@ pub use focals::{
 pub use guided::{CoInlierKernel, CoInliers};
 pub use hypotheses::{centred_points, generate_hypotheses, GeneratedHypotheses};
 pub use input::{image_centre, Matches};
-pub use merge::{merge_explained, InlierBits, MERGE_SHARE};
+pub use merge::{merge_explained, merge_refitted, InlierBits, MERGE_REFIT_ITERS, MERGE_SHARE};
 pub use params::{
     DuplicateFilter, EightPoint, FinalAssignment, FocalKey, FocalSolver, HypothesisKey,
     ImplausibleFocal, IrlsFit, Linkage, LocalTest, Method, MinimalSolutions, MinimalSolver,

@@ -5,10 +5,10 @@ use crate::assignment::members;
 use crate::merge::inlier_words;
 use crate::{
     centred_points, estimate_hypothesis_focals, extend_labels, focal_filter, generate_hypotheses,
-    merge_explained, reassign, ClusterModel, ClusteredSubset, DuplicateFilter, FinalAssignment,
-    FocalVerdict, GeneratedHypotheses, Hypothesis, HypothesisCounts, HypothesisFocals,
-    HypothesisStatus, InlierBits, Matches, Method, MinimalSolutions, MinimalSolver, Params,
-    Segmentation, SegmentationError, StageTimings, SubsetExtension,
+    merge_explained, merge_refitted, reassign, ClusterModel, ClusteredSubset, DuplicateFilter,
+    FinalAssignment, FocalVerdict, GeneratedHypotheses, Hypothesis, HypothesisCounts,
+    HypothesisFocals, HypothesisStatus, InlierBits, Matches, Method, MinimalSolutions,
+    MinimalSolver, Params, Segmentation, SegmentationError, StageTimings, SubsetExtension,
 };
 use clustering::{ClusteringParams, Preferences};
 use geometry::{eight_point_normalized, sampson_distances_squared, Correspondences, SampsonModels};
@@ -222,8 +222,11 @@ fn cluster_kept(
     let subset_active = generated.subset.len() < matches.len();
     // The inlier sets of the entering hypotheses: the merge's models, and
     // the cluster models that the subset's extension may test against.
-    let keep_inliers = params.final_assignment == FinalAssignment::Merge
-        || (subset_active && params.subset_extension != SubsetExtension::Preference);
+    let keep_inliers = matches!(
+        params.final_assignment,
+        FinalAssignment::Merge | FinalAssignment::MergeRefit
+    ) || (subset_active
+        && params.subset_extension != SubsetExtension::Preference);
     let step7 = build_preferences(segmentation, generated, kept, params, keep_inliers)?;
     segmentation.timings.preferences = t.elapsed().as_secs_f64();
 
@@ -246,6 +249,14 @@ fn cluster_kept(
             clustering.clusters_after_filter,
             &step7.inliers,
         )),
+        FinalAssignment::MergeRefit => {
+            let (merged, count) = with_count(merge_explained(
+                &clustering.labels,
+                clustering.clusters_after_filter,
+                &step7.inliers,
+            ));
+            with_count(merge_refitted(points, &merged, count, params))
+        }
     };
     let (labels, all_points) = if subset_active {
         let all = centred_points(matches, params)?;

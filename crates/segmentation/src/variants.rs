@@ -178,6 +178,10 @@ param_enum! {
         /// hypothesis) explains at least [`crate::MERGE_SHARE`] of its matches
         /// ([`crate::merge_explained`]); no match changes cluster otherwise.
         Merge,
+        /// `Merge`, then a cluster also joins a larger one when the F
+        /// refitted on the two together explains at least
+        /// [`crate::MERGE_SHARE`] of each ([`crate::merge_refitted`]).
+        MergeRefit,
     }
 }
 

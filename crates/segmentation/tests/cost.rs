@@ -177,15 +177,22 @@ fn merging_only_joins_clusters() {
             final_assignment: FinalAssignment::Merge,
             ..none.clone()
         };
+        let merge_refit = Params {
+            final_assignment: FinalAssignment::MergeRefit,
+            ..none.clone()
+        };
         let a = segment(&matches(&scene), &none).unwrap().labels;
         let b = segment(&matches(&scene), &merge).unwrap().labels;
+        let c = segment(&matches(&scene), &merge_refit).unwrap().labels;
         // The outliers are the same, and each merged cluster is a union of
         // clusters: matches together before stay together.
-        for i in 0..a.len() {
-            assert_eq!(a[i] < 0, b[i] < 0, "match {i}");
-            for k in 0..a.len() {
-                if a[i] >= 0 && a[i] == a[k] {
-                    assert_eq!(b[i], b[k], "matches {i} and {k}");
+        for (a, b) in [(&a, &b), (&b, &c)] {
+            for i in 0..a.len() {
+                assert_eq!(a[i] < 0, b[i] < 0, "match {i}");
+                for k in 0..a.len() {
+                    if a[i] >= 0 && a[i] == a[k] {
+                        assert_eq!(b[i], b[k], "matches {i} and {k}");
+                    }
                 }
             }
         }

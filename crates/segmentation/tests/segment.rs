@@ -450,6 +450,50 @@ fn the_final_assignment_recovers_noise_free_labels_exactly() {
 }
 
 #[test]
+fn merge_refit_joins_the_fragments_of_a_motion_and_keeps_motions_apart() {
+    use segmentation::{centred_points, merge_refitted};
+    for params in [Params::default(), Params::fast()] {
+        for (category, index) in [(1, 900), (2, 900), (2, 901)] {
+            let scene = noise_free_scene(category, index);
+            let truth = scene.labels.clone().unwrap();
+            let motions = scene.num_motions();
+            let points = centred_points(&matches(&scene), &params).unwrap();
+            // Every motion split in two interleaved fragments (labels
+            // 2 (t - 1) and 2 (t - 1) + 1), the gross outliers left out.
+            let fragments: Vec<i32> = truth
+                .iter()
+                .enumerate()
+                .map(|(i, &t)| {
+                    if t == 0 {
+                        -1
+                    } else {
+                        2 * (t - 1) + (i % 2) as i32
+                    }
+                })
+                .collect();
+            let labels = merge_refitted(&points, &fragments, 2 * motions, &params);
+            let what = scene.name.clone();
+            assert!(same_partition_on_inliers(&labels, &truth), "{what}");
+            assert_eq!(labels.iter().max(), Some(&(motions as i32 - 1)), "{what}");
+            // One fragment per motion: nothing to merge, the labels stay.
+            let halves: Vec<i32> = fragments
+                .iter()
+                .map(|&l| if l % 2 == 0 { l / 2 } else { -1 })
+                .collect();
+            let kept = merge_refitted(&points, &halves, motions, &params);
+            assert!(
+                same_partition_on_inliers(
+                    &kept,
+                    &halves.iter().map(|&l| l + 1).collect::<Vec<_>>()
+                ),
+                "{what}"
+            );
+            assert_eq!(kept.iter().max(), Some(&(motions as i32 - 1)), "{what}");
+        }
+    }
+}
+
+#[test]
 fn segmenting_with_the_final_assignment_recovers_noise_free_labels() {
     use segmentation::{FinalAssignment, Sampling};
     // 2/0901 is left out: with localized samples at M 300 its labels are
