@@ -5,8 +5,14 @@
 //! end their multi-model fitting.
 
 use crate::Params;
-use geometry::{sampson_distances_squared, Correspondences, IrlsWorkspace};
+use geometry::{sampson_distances_squared, Correspondences, IrlsParams, IrlsWorkspace};
 use nalgebra::Matrix3;
+
+/// IRLS-Tukey iterations of the cluster refits that follow the clustering
+/// ([`crate::merge_refitted`], [`recover_outliers`]): the default's
+/// `irls_iters`, whatever the profile's (the fast profile's one iteration
+/// leaves a cluster's 8-point, which its wrong matches pull off).
+pub const CLUSTER_REFIT_ITERS: usize = 5;
 
 /// New labels for `labels` (clusters `0..clusters`, −1 outliers):
 ///
@@ -28,9 +34,43 @@ pub fn reassign(
     clusters: usize,
     params: &Params,
 ) -> Vec<i32> {
-    let models = refit_clusters(points, &members(labels, clusters), params);
+    let models = refit_clusters(points, &members(labels, clusters), &params.irls());
     let nearest = nearest_model(points, &models, params.thr_px * params.thr_px);
     drop_small_and_renumber(&nearest, models.len(), params.min_cluster_size)
+}
+
+/// `labels` (clusters `0..clusters`, −1 outliers) with the outliers
+/// recovered (`recover_outliers = "refit"`):
+///
+/// 1. the F of each cluster refitted by IRLS-Tukey (Eqs. 33–34,
+///    [`CLUSTER_REFIT_ITERS`] iterations, `params`' other IRLS settings)
+///    started from the 8-point of its matches;
+/// 2. every outlier joins the cluster whose refitted F has the smallest
+///    squared Sampson distance to it (Eq. 23; the lower label on ties)
+///    when it is `≤ thr_px²`; every other match keeps its cluster;
+/// 3. labels are renumbered 0, 1, … by first appearance.
+///
+/// A match with no hypothesis of the M within `thr_px` has an empty
+/// preference set and ends an outlier, however well its motion's F would
+/// explain it: at small M this happens to many correct matches.
+pub fn recover_outliers(
+    points: &Correspondences,
+    labels: &[i32],
+    clusters: usize,
+    params: &Params,
+) -> Vec<i32> {
+    let irls = IrlsParams {
+        max_iters: CLUSTER_REFIT_ITERS,
+        ..params.irls()
+    };
+    let models = refit_clusters(points, &members(labels, clusters), &irls);
+    let nearest = nearest_model(points, &models, params.thr_px * params.thr_px);
+    let recovered: Vec<i32> = labels
+        .iter()
+        .zip(nearest)
+        .map(|(&label, nearest)| if label >= 0 { label } else { nearest })
+        .collect();
+    drop_small_and_renumber(&recovered, clusters, 0)
 }
 
 /// The matches of each label `0..clusters`, increasing.
@@ -48,13 +88,12 @@ pub(crate) fn members(labels: &[i32], clusters: usize) -> Vec<Vec<usize>> {
 fn refit_clusters(
     points: &Correspondences,
     members: &[Vec<usize>],
-    params: &Params,
+    irls: &IrlsParams,
 ) -> Vec<Option<Matrix3<f64>>> {
-    let irls = params.irls();
     let mut ws = IrlsWorkspace::new();
     members
         .iter()
-        .map(|idx| ws.run(points, idx, None, &irls).ok().map(|s| s.f))
+        .map(|idx| ws.run(points, idx, None, irls).ok().map(|s| s.f))
         .collect()
 }
 

@@ -51,7 +51,7 @@ mod variants;
 mod weight_sets;
 
 pub use adaptive::{SupportTracker, SUPPORT_GAIN};
-pub use assignment::reassign;
+pub use assignment::{reassign, recover_outliers, CLUSTER_REFIT_ITERS};
 pub use error::SegmentationError;
 pub use filter::{focal_filter, focal_verdict, FilterOutcome, PLAUSIBLE_FOCAL_RANGE};
 pub use focal::FocalConsensus;
@@ -61,12 +61,12 @@ pub use focals::{
 pub use guided::{CoInlierKernel, CoInliers};
 pub use hypotheses::{centred_points, generate_hypotheses, GeneratedHypotheses};
 pub use input::{image_centre, Matches};
-pub use merge::{merge_explained, merge_refitted, InlierBits, MERGE_REFIT_ITERS, MERGE_SHARE};
+pub use merge::{merge_explained, merge_refitted, InlierBits, MERGE_SHARE};
 pub use params::{
     DuplicateFilter, EightPoint, FinalAssignment, FocalKey, FocalSolver, HypothesisKey,
     ImplausibleFocal, IrlsFit, Linkage, LocalTest, Method, MinimalSolutions, MinimalSolver,
-    OnFailure, ParamError, Params, Sampling, SizeRule, SubsetExtension, WeightPreset, WeightSets,
-    PARAM_KEYS,
+    OnFailure, ParamError, Params, RecoverOutliers, Sampling, SizeRule, SubsetExtension,
+    WeightPreset, WeightSets, PARAM_KEYS,
 };
 pub use profile::Profile;
 pub use result::{

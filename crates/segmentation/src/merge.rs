@@ -121,18 +121,13 @@ pub fn merge_explained(labels: &[i32], clusters: usize, inliers: &InlierBits) ->
     crate::assignment::drop_small_and_renumber(&merged, clusters, 0)
 }
 
-/// IRLS-Tukey iterations of the union refit of [`merge_refitted`]: the
-/// default's `irls_iters`, whatever the profile's (the fast profile's one
-/// iteration leaves the 8-point of a union that is half outliers).
-pub const MERGE_REFIT_ITERS: usize = 5;
-
 /// New labels for `labels` (clusters `0..clusters`, −1 outliers) after
 /// merging clusters that one *refitted* model explains
 /// (`final_assignment = "merge-refit"`, run after [`merge_explained`]):
 ///
 /// 1. clusters are visited from the largest (the lower label on ties);
 ///    each earlier kept group `A` and the cluster `B` are refitted
-///    together: the F of IRLS-Tukey (Eqs. 33–34, [`MERGE_REFIT_ITERS`]
+///    together: the F of IRLS-Tukey (Eqs. 33–34, [`crate::CLUSTER_REFIT_ITERS`]
 ///    iterations, `params`' other IRLS settings) started from the 8-point
 ///    of `A ∪ B`;
 /// 2. its share of `A` and its share of `B` explained (squared Sampson
@@ -204,7 +199,7 @@ impl<'a> UnionFit<'a> {
         Self {
             points,
             irls: IrlsParams {
-                max_iters: MERGE_REFIT_ITERS,
+                max_iters: crate::CLUSTER_REFIT_ITERS,
                 ..params.irls()
             },
             thr2: params.thr_px * params.thr_px,

@@ -14,7 +14,7 @@ use thiserror::Error;
 
 pub use crate::variants::{
     DuplicateFilter, EightPoint, FinalAssignment, FocalSolver, ImplausibleFocal, LocalTest, Method,
-    MinimalSolutions, MinimalSolver, Sampling, SubsetExtension,
+    MinimalSolutions, MinimalSolver, RecoverOutliers, Sampling, SubsetExtension,
 };
 pub use crate::weight_sets::{WeightPreset, WeightSets};
 
@@ -193,7 +193,10 @@ pub struct Params {
     /// clustering (Barath et al., CVPR 2023) end ([`crate::reassign`]);
     /// or `merge` (a cluster joins a larger one whose best-supported
     /// hypothesis explains [`crate::MERGE_SHARE`] of its matches,
-    /// [`crate::merge_explained`]). Default `merge` (the thesis: `none`).
+    /// [`crate::merge_explained`]) or `merge-refit` (`merge`, then a
+    /// cluster joins a larger one when the F refitted on the two explains
+    /// `MERGE_SHARE` of each, [`crate::merge_refitted`]). Default `merge`
+    /// (the thesis: `none`).
     pub final_assignment: FinalAssignment,
     /// Which kept hypotheses enter the preferences (step 7): `none` (all,
     /// the thesis) or `same-inliers` (one per distinct inlier set,
@@ -215,6 +218,12 @@ pub struct Params {
     /// Default `preference-explained` (results/README.md, "Real-sized
     /// scenes").
     pub subset_extension: SubsetExtension,
+    /// After the final assignment and the subset's extension: `none` (the
+    /// outliers stay, the thesis) or `refit` (each cluster's F refitted by
+    /// IRLS-Tukey, [`crate::CLUSTER_REFIT_ITERS`] iterations; an outlier
+    /// joins the cluster whose refitted F explains it best within
+    /// `thr_px`, [`crate::recover_outliers`]). Default `none`.
+    pub recover_outliers: RecoverOutliers,
     /// Memory bound of the preferences and the clustering (steps 7–8), MB
     /// (10⁶ bytes; [`clustering::required_memory`]). With a bound the
     /// segmentation stops before drawing a sample when N points and
@@ -282,6 +291,7 @@ impl Params {
             duplicate_filter: DuplicateFilter::None,
             cluster_subset: 0,
             subset_extension: SubsetExtension::PreferenceExplained,
+            recover_outliers: RecoverOutliers::None,
             max_memory_mb: 0,
             seed: 12345,
         }
@@ -289,7 +299,7 @@ impl Params {
 }
 
 /// The keys of [`Params`] in declaration order.
-pub const PARAM_KEYS: [&str; 37] = [
+pub const PARAM_KEYS: [&str; 38] = [
     "method",
     "num_samples",
     "adaptive_batch",
@@ -325,6 +335,7 @@ pub const PARAM_KEYS: [&str; 37] = [
     "duplicate_filter",
     "cluster_subset",
     "subset_extension",
+    "recover_outliers",
     "max_memory_mb",
     "seed",
 ];

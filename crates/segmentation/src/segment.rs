@@ -5,10 +5,11 @@ use crate::assignment::members;
 use crate::merge::inlier_words;
 use crate::{
     centred_points, estimate_hypothesis_focals, extend_labels, focal_filter, generate_hypotheses,
-    merge_explained, merge_refitted, reassign, ClusterModel, ClusteredSubset, DuplicateFilter,
-    FinalAssignment, FocalVerdict, GeneratedHypotheses, Hypothesis, HypothesisCounts,
-    HypothesisFocals, HypothesisStatus, InlierBits, Matches, Method, MinimalSolutions,
-    MinimalSolver, Params, Segmentation, SegmentationError, StageTimings, SubsetExtension,
+    merge_explained, merge_refitted, reassign, recover_outliers, ClusterModel, ClusteredSubset,
+    DuplicateFilter, FinalAssignment, FocalVerdict, GeneratedHypotheses, Hypothesis,
+    HypothesisCounts, HypothesisFocals, HypothesisStatus, InlierBits, Matches, Method,
+    MinimalSolutions, MinimalSolver, Params, RecoverOutliers, Segmentation, SegmentationError,
+    StageTimings, SubsetExtension,
 };
 use clustering::{ClusteringParams, Preferences};
 use geometry::{eight_point_normalized, sampson_distances_squared, Correspondences, SampsonModels};
@@ -271,6 +272,10 @@ fn cluster_kept(
         (labels, Cow::Owned(all))
     } else {
         (labels, Cow::Borrowed(points))
+    };
+    let labels = match params.recover_outliers {
+        RecoverOutliers::None => labels,
+        RecoverOutliers::Refit => recover_outliers(&all_points, &labels, clusters, params),
     };
     segmentation.clusters = cluster_models(&all_points, &labels, clusters);
     segmentation.timings.cluster_fit = t.elapsed().as_secs_f64();

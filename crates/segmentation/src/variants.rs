@@ -214,3 +214,15 @@ param_enum! {
         PreferenceExplained,
     }
 }
+
+param_enum! {
+    /// What becomes of the outliers once the clusters are final.
+    pub enum RecoverOutliers {
+        /// They stay outliers (the thesis).
+        None,
+        /// Each cluster's F is refitted by IRLS-Tukey on its matches; an
+        /// outlier joins the cluster whose refitted F explains it best
+        /// within `thr_px` ([`crate::recover_outliers`]).
+        Refit,
+    }
+}

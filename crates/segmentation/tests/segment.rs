@@ -494,6 +494,39 @@ fn merge_refit_joins_the_fragments_of_a_motion_and_keeps_motions_apart() {
 }
 
 #[test]
+fn outlier_recovery_takes_back_the_left_out_inliers_and_moves_no_one_else() {
+    use segmentation::{centred_points, recover_outliers};
+    for params in [Params::default(), Params::fast()] {
+        for (category, index) in [(1, 900), (2, 900), (2, 901)] {
+            let scene = noise_free_scene(category, index);
+            let truth = scene.labels.clone().unwrap();
+            let motions = scene.num_motions();
+            let points = centred_points(&matches(&scene), &params).unwrap();
+            // Every third inlier and every gross outlier left out.
+            let clustered: Vec<i32> = truth
+                .iter()
+                .enumerate()
+                .map(|(i, &t)| if t == 0 || i % 3 == 0 { -1 } else { t - 1 })
+                .collect();
+            let labels = recover_outliers(&points, &clustered, motions, &params);
+            let what = scene.name.clone();
+            assert!(same_partition_on_inliers(&labels, &truth), "{what}");
+            // Clustered matches keep their cluster (the numbering may change).
+            assert!(same_partition_on_inliers(
+                &labels,
+                &clustered.iter().map(|&l| l + 1).collect::<Vec<_>>()
+            ));
+            // Gross mismatches lie off every motion's epipolar geometry.
+            let outliers = truth.iter().filter(|&&t| t == 0).count();
+            let joined = (0..truth.len())
+                .filter(|&i| truth[i] == 0 && labels[i] >= 0)
+                .count();
+            assert!(joined * 10 <= outliers, "{what}: {joined} of {outliers}");
+        }
+    }
+}
+
+#[test]
 fn segmenting_with_the_final_assignment_recovers_noise_free_labels() {
     use segmentation::{FinalAssignment, Sampling};
     // 2/0901 is left out: with localized samples at M 300 its labels are

@@ -83,6 +83,8 @@ EXPERIMENT FILE (TOML)
                                each match to its nearest model within thr_px)
                                | merge (a cluster joins a larger one whose best
                                hypothesis explains 80 % of its matches)
+                               | merge-refit (merge, then a cluster joins a larger
+                               one when the F refitted on both explains 80 % of each)
   duplicate_filter = \"none\"   none | same-inliers (one hypothesis per distinct
                                inlier set enters the preferences)
   cluster_subset = 0           > 0: steps 1-9 on this many random matches, the others
@@ -90,6 +92,8 @@ EXPERIMENT FILE (TOML)
   subset_extension = \"preference-explained\"   how: preference-explained (nearest mean
                                preference vector, within thr_px of its cluster's model)
                                | preference | model (nearest cluster model)
+  recover_outliers = \"none\"   none | refit (each cluster's F refitted by IRLS; an
+                               outlier joins the cluster that explains it best)
   max_memory_mb = 0            > 0: refuse (at once) a scene whose clustering
                                would need more memory (MB); 0: no bound
   seed = 12345                 sampling seed

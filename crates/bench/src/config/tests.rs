@@ -99,6 +99,18 @@ fn sampling_and_final_assignment_read_and_reject_bad_values() {
     assert_eq!(p.sampling, segmentation::Sampling::Localized);
     assert_eq!(p.final_assignment, segmentation::FinalAssignment::Refit);
     assert_eq!(PipelineConfig::from_params(p), c.pipeline);
+    let merge_refit = parse(&format!(
+        "{BASE}[pipeline]\nfinal_assignment = \"merge-refit\"\nrecover_outliers = \"refit\"\n"
+    ))
+    .unwrap();
+    assert_eq!(
+        merge_refit.pipeline.params().final_assignment,
+        segmentation::FinalAssignment::MergeRefit
+    );
+    assert_eq!(
+        merge_refit.pipeline.params().recover_outliers,
+        segmentation::RecoverOutliers::Refit
+    );
     let err = parse(&format!("{BASE}[pipeline]\nsampling = \"napsac\"\n")).unwrap_err();
     assert!(
         err.to_string()
