@@ -4,17 +4,19 @@
 //! (a second cluster whose majority is a motion another cluster already
 //! holds) and clusters of gross outliers, and the thesis-protocol errors
 //! (ground-truth inliers mislabelled) into inliers called outliers, inliers
-//! in a fragment and inliers in another motion's cluster.
+//! in a fragment and inliers in another motion's cluster. Scenes and
+//! sampling seeds are those of `sctl run` on the same preset and indices.
 //!
 //! ```text
-//! cargo run --release -p segmentation --example cluster_anatomy -- \
+//! cargo run --release -p bench --example cluster_anatomy -- \
 //!     [--preset adelaide-like] [--from 800] [--to 819] [--profile fast] \
 //!     [--num-samples M] [--seeds 12345,23456,34567]
 //! ```
 
+use bench::pipeline::{matches, scene_seed};
 use datasets::synthetic::Preset;
 use datasets::Scene;
-use segmentation::{segment, Matches, Params, Profile};
+use segmentation::{segment, Params, Profile};
 use std::process::ExitCode;
 
 struct Options {
@@ -168,14 +170,12 @@ fn main() -> ExitCode {
                     return ExitCode::FAILURE;
                 }
             };
-            let matches = Matches::new(&scene.points1, &scene.points2, scene.image_size)
-                .with_principal_point(scene.principal_point);
             for &seed in &o.seeds {
                 let p = Params {
-                    seed,
+                    seed: scene_seed(seed, &scene.name),
                     ..o.params.clone()
                 };
-                match segment(&matches, &p) {
+                match segment(&matches(&scene), &p) {
                     Ok(seg) => anatomy.add(&scene_labels(&scene), &seg.labels, scene.num_motions()),
                     Err(e) => eprintln!("cluster_anatomy: {}: {e}", scene.name),
                 }
