@@ -40,7 +40,7 @@ pub struct Args {
     /// Named parameter set: default | thesis (the thesis text's Algorithm 1)
     /// | fast (fewer samples and IRLS iterations, guided sampling, 200 matches
     /// clustered and the others joined: 20-80 times faster per scene, within
-    /// 2 points of the default's ME on the synthetic test data, 5.7 % against
+    /// 2 points of the default's ME on the synthetic test data, 5.9 % against
     /// 4.1 % on AdelaideRMF) | large (1 000 matches and more: localized
     /// sampling, clusters under 2 % of the matches dropped, 1000 matches
     /// clustered and the others joined). With --config it replaces the file's
