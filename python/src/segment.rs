@@ -76,7 +76,7 @@ use std::fmt::Write as _;
 ///     - linkage = "t-linkage"       ("t-linkage" or "j-linkage")
 ///     - min_cluster_size = 8        (smaller clusters become outliers)
 ///     - size_rule = "min-size"      ("min-size", "largest-gap" or {"relative-min": f})
-///     - final_assignment = "merge"  ("merge": clusters one model explains joined, "none", "refit": refitted cluster models, nearest within thr_px, or "merge-refit": merge, then clusters one F refitted on both explains joined)
+///     - final_assignment = "merge"  ("merge": clusters one model explains joined, "none", "refit": refitted cluster models, nearest within thr_px, "merge-refit": merge, then clusters one F refitted on both explains joined, or "merge-anchored": the same, the refit started from the larger cluster's model)
 ///     - duplicate_filter = "none"   ("none", or "same-inliers": one hypothesis per distinct inlier set)
 ///     - cluster_subset = 0          (> 0: steps 1-9 on this many random matches, the others join the nearest cluster)
 ///     - subset_extension = "preference-explained"  ("preference-explained": nearest mean preference vector, within thr_px of that cluster's model; "preference": without that test; "model": nearest cluster model)

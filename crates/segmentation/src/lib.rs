@@ -40,6 +40,7 @@ mod guided;
 mod hypotheses;
 mod input;
 mod merge;
+mod merge_refit;
 mod minimal;
 mod params;
 mod profile;
@@ -61,7 +62,8 @@ pub use focals::{
 pub use guided::{CoInlierKernel, CoInliers};
 pub use hypotheses::{centred_points, generate_hypotheses, GeneratedHypotheses};
 pub use input::{image_centre, Matches};
-pub use merge::{merge_explained, merge_refitted, InlierBits, MERGE_SHARE};
+pub use merge::{merge_explained, InlierBits, MERGE_SHARE};
+pub use merge_refit::{merge_anchored, merge_refitted};
 pub use params::{
     DuplicateFilter, EightPoint, FinalAssignment, FocalKey, FocalSolver, HypothesisKey,
     ImplausibleFocal, IrlsFit, Linkage, LocalTest, Method, MinimalSolutions, MinimalSolver,

@@ -4,8 +4,7 @@
 //! merge step of multi-model fitting (Progressive-X, Barath & Matas, ICCV
 //! 2019; consensus-space clustering, Barath et al., CVPR 2023) joins them.
 
-use crate::Params;
-use geometry::{sampson_distances_squared, Correspondences, IrlsParams, IrlsWorkspace};
+use nalgebra::Matrix3;
 
 /// The share of a cluster's matches that a larger cluster's model must
 /// explain (squared Sampson distance `≤ thr_px²`) for the two to merge.
@@ -121,113 +120,6 @@ pub fn merge_explained(labels: &[i32], clusters: usize, inliers: &InlierBits) ->
     crate::assignment::drop_small_and_renumber(&merged, clusters, 0)
 }
 
-/// New labels for `labels` (clusters `0..clusters`, −1 outliers) after
-/// merging clusters that one *refitted* model explains
-/// (`final_assignment = "merge-refit"`, run after [`merge_explained`]):
-///
-/// 1. clusters are visited from the largest (the lower label on ties);
-///    each earlier kept group `A` and the cluster `B` are refitted
-///    together: the F of IRLS-Tukey (Eqs. 33–34, [`crate::CLUSTER_REFIT_ITERS`]
-///    iterations, `params`' other IRLS settings) started from the 8-point
-///    of `A ∪ B`;
-/// 2. its share of `A` and its share of `B` explained (squared Sampson
-///    distance, Eq. 23, `≤ thr_px²`) are taken, and the smaller of the two
-///    is the pair's score; `B` joins the group of best score when it is
-///    `≥ MERGE_SHARE`, the group then holding `A ∪ B`; else `B` starts a
-///    group;
-/// 3. labels are renumbered 0, 1, … by first appearance; outliers stay −1.
-///
-/// Where [`merge_explained`] needs one sampled hypothesis to explain a
-/// fragment, this needs one F to explain both: at small M no single
-/// sampled hypothesis may span a motion that T-Linkage split.
-/// `points` are the principal-point-centred matches the labels index.
-pub fn merge_refitted(
-    points: &Correspondences,
-    labels: &[i32],
-    clusters: usize,
-    params: &Params,
-) -> Vec<i32> {
-    let members = crate::assignment::members(labels, clusters);
-    let mut order: Vec<usize> = (0..clusters).collect();
-    order.sort_by_key(|&c| (std::cmp::Reverse(members[c].len()), c));
-    let mut union_fit = UnionFit::new(points, params);
-
-    let mut target = vec![0usize; clusters];
-    let mut groups: Vec<Vec<usize>> = Vec::new();
-    for &b in &order {
-        let best = groups
-            .iter()
-            .enumerate()
-            .map(|(g, group)| (g, union_fit.score(group, &members[b])))
-            .fold(None, |best: Option<(usize, f64)>, (g, s)| match best {
-                Some((_, bs)) if bs >= s => best,
-                _ => Some((g, s)),
-            });
-        match best {
-            Some((g, s)) if s >= MERGE_SHARE => {
-                target[b] = g;
-                groups[g].extend_from_slice(&members[b]);
-                groups[g].sort_unstable();
-            }
-            _ => {
-                target[b] = groups.len();
-                groups.push(members[b].clone());
-            }
-        }
-    }
-    let merged: Vec<i32> = labels
-        .iter()
-        .map(|&l| match usize::try_from(l) {
-            Ok(l) if l < clusters => target[l] as i32,
-            _ => -1,
-        })
-        .collect();
-    crate::assignment::drop_small_and_renumber(&merged, groups.len(), 0)
-}
-
-/// The union refit of [`merge_refitted`] and its buffers.
-struct UnionFit<'a> {
-    points: &'a Correspondences,
-    irls: IrlsParams,
-    thr2: f64,
-    workspace: IrlsWorkspace,
-    residuals: Vec<f64>,
-}
-
-impl<'a> UnionFit<'a> {
-    fn new(points: &'a Correspondences, params: &Params) -> Self {
-        Self {
-            points,
-            irls: IrlsParams {
-                max_iters: crate::CLUSTER_REFIT_ITERS,
-                ..params.irls()
-            },
-            thr2: params.thr_px * params.thr_px,
-            workspace: IrlsWorkspace::new(),
-            residuals: vec![0.0; points.len()],
-        }
-    }
-
-    /// The smaller of the shares of `a` and of `b` that the F refitted on
-    /// `a ∪ b` explains; 0 when the refit fails.
-    fn score(&mut self, a: &[usize], b: &[usize]) -> f64 {
-        let mut union: Vec<usize> = a.iter().chain(b).copied().collect();
-        union.sort_unstable();
-        let Ok(fit) = self.workspace.run(self.points, &union, None, &self.irls) else {
-            return 0.0;
-        };
-        sampson_distances_squared(&fit.f, self.points, &mut self.residuals);
-        let share = |set: &[usize]| {
-            let explained = set
-                .iter()
-                .filter(|&&i| self.residuals[i] <= self.thr2)
-                .count();
-            explained as f64 / set.len().max(1) as f64
-        };
-        share(a).min(share(b))
-    }
-}
-
 /// For each cluster, the hypothesis with the most inliers among its
 /// matches (None when no hypothesis has one).
 pub(crate) fn best_hypotheses(
@@ -258,6 +150,20 @@ pub(crate) fn best_hypotheses(
         }
     }
     best.into_iter().map(|(_, h)| h).collect()
+}
+
+/// For each cluster, the model of its best-supported hypothesis
+/// ([`best_hypotheses`]) among `models`, the entering hypotheses in order.
+pub(crate) fn cluster_hypotheses(
+    labels: &[i32],
+    clusters: usize,
+    inliers: &InlierBits,
+    models: &[Matrix3<f64>],
+) -> Vec<Option<Matrix3<f64>>> {
+    best_hypotheses(labels, clusters, inliers)
+        .into_iter()
+        .map(|h| h.and_then(|h| models.get(h).copied()))
+        .collect()
 }
 
 #[cfg(test)]

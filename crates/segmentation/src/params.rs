@@ -195,7 +195,9 @@ pub struct Params {
     /// hypothesis explains [`crate::MERGE_SHARE`] of its matches,
     /// [`crate::merge_explained`]) or `merge-refit` (`merge`, then a
     /// cluster joins a larger one when the F refitted on the two explains
-    /// `MERGE_SHARE` of each, [`crate::merge_refitted`]). Default `merge`
+    /// `MERGE_SHARE` of each, [`crate::merge_refitted`]) or
+    /// `merge-anchored` (the same, the refit started from the larger
+    /// cluster's model, [`crate::merge_anchored`]). Default `merge`
     /// (the thesis: `none`).
     pub final_assignment: FinalAssignment,
     /// Which kept hypotheses enter the preferences (step 7): `none` (all,

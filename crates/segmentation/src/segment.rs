@@ -2,12 +2,12 @@
 //! hypotheses and focals computed beforehand.
 
 use crate::assignment::members;
-use crate::merge::inlier_words;
+use crate::merge::{cluster_hypotheses, inlier_words};
 use crate::{
     centred_points, estimate_hypothesis_focals, extend_labels, focal_filter, generate_hypotheses,
-    merge_explained, merge_refitted, reassign, recover_outliers, ClusterModel, ClusteredSubset,
-    DuplicateFilter, FinalAssignment, FocalVerdict, GeneratedHypotheses, Hypothesis,
-    HypothesisCounts, HypothesisFocals, HypothesisStatus, InlierBits, Matches, Method,
+    merge_anchored, merge_explained, merge_refitted, reassign, recover_outliers, ClusterModel,
+    ClusteredSubset, DuplicateFilter, FinalAssignment, FocalVerdict, GeneratedHypotheses,
+    Hypothesis, HypothesisCounts, HypothesisFocals, HypothesisStatus, InlierBits, Matches, Method,
     MinimalSolutions, MinimalSolver, Params, RecoverOutliers, Segmentation, SegmentationError,
     StageTimings, SubsetExtension,
 };
@@ -225,7 +225,7 @@ fn cluster_kept(
     // the cluster models that the subset's extension may test against.
     let keep_inliers = matches!(
         params.final_assignment,
-        FinalAssignment::Merge | FinalAssignment::MergeRefit
+        FinalAssignment::Merge | FinalAssignment::MergeRefit | FinalAssignment::MergeAnchored
     ) || (subset_active
         && params.subset_extension != SubsetExtension::Preference);
     let step7 = build_preferences(segmentation, generated, kept, params, keep_inliers)?;
@@ -257,6 +257,15 @@ fn cluster_kept(
                 &step7.inliers,
             ));
             with_count(merge_refitted(points, &merged, count, params))
+        }
+        FinalAssignment::MergeAnchored => {
+            let (merged, count) = with_count(merge_explained(
+                &clustering.labels,
+                clustering.clusters_after_filter,
+                &step7.inliers,
+            ));
+            let anchors = cluster_hypotheses(&merged, count, &step7.inliers, &step7.models);
+            with_count(merge_anchored(points, &merged, count, &anchors, params))
         }
     };
     let (labels, all_points) = if subset_active {

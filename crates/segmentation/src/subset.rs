@@ -13,7 +13,7 @@
 //! ICCV 2019).
 
 use crate::assignment::{drop_small_and_renumber, nearest_model};
-use crate::merge::best_hypotheses;
+use crate::merge::cluster_hypotheses;
 use crate::{hypothesis_rng, InlierBits, SubsetExtension};
 use clustering::preference;
 use geometry::{sampson_distances_squared, Correspondences, SampsonModels};
@@ -93,12 +93,7 @@ pub fn extend_labels(
     tau: f64,
     how: SubsetExtension,
 ) -> Vec<i32> {
-    let cluster_models = || -> Vec<Option<Matrix3<f64>>> {
-        best_hypotheses(subset.labels, subset.clusters, inliers)
-            .into_iter()
-            .map(|h| h.and_then(|h| models.get(h).copied()))
-            .collect()
-    };
+    let cluster_models = || cluster_hypotheses(subset.labels, subset.clusters, inliers, models);
     let mut labels = match how {
         SubsetExtension::Preference => nearest_mean_preference(points, subset, models, tau),
         SubsetExtension::Model => nearest_model(points, &cluster_models(), tau),

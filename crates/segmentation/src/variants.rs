@@ -182,6 +182,11 @@ param_enum! {
         /// refitted on the two together explains at least
         /// [`crate::MERGE_SHARE`] of each ([`crate::merge_refitted`]).
         MergeRefit,
+        /// `Merge`, then a cluster also joins a larger one when the F
+        /// refitted on the two together, started from the larger one's
+        /// model, explains at least [`crate::MERGE_SHARE`] of each
+        /// ([`crate::merge_anchored`]).
+        MergeAnchored,
     }
 }
 

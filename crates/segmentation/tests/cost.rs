@@ -184,9 +184,14 @@ fn merging_only_joins_clusters() {
         let a = segment(&matches(&scene), &none).unwrap().labels;
         let b = segment(&matches(&scene), &merge).unwrap().labels;
         let c = segment(&matches(&scene), &merge_refit).unwrap().labels;
+        let anchored = Params {
+            final_assignment: FinalAssignment::MergeAnchored,
+            ..none.clone()
+        };
+        let d = segment(&matches(&scene), &anchored).unwrap().labels;
         // The outliers are the same, and each merged cluster is a union of
         // clusters: matches together before stay together.
-        for (a, b) in [(&a, &b), (&b, &c)] {
+        for (a, b) in [(&a, &b), (&b, &c), (&b, &d)] {
             for i in 0..a.len() {
                 assert_eq!(a[i] < 0, b[i] < 0, "match {i}");
                 for k in 0..a.len() {

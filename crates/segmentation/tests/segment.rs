@@ -450,8 +450,8 @@ fn the_final_assignment_recovers_noise_free_labels_exactly() {
 }
 
 #[test]
-fn merge_refit_joins_the_fragments_of_a_motion_and_keeps_motions_apart() {
-    use segmentation::{centred_points, merge_refitted};
+fn merges_by_refit_join_the_fragments_of_a_motion_and_keep_motions_apart() {
+    use segmentation::{centred_points, fit_cluster, merge_anchored, merge_refitted};
     for params in [Params::default(), Params::fast()] {
         for (category, index) in [(1, 900), (2, 900), (2, 901)] {
             let scene = noise_free_scene(category, index);
@@ -471,24 +471,38 @@ fn merge_refit_joins_the_fragments_of_a_motion_and_keeps_motions_apart() {
                     }
                 })
                 .collect();
-            let labels = merge_refitted(&points, &fragments, 2 * motions, &params);
+            // Anchors: each fragment's own 8-point F.
+            let anchors: Vec<_> = (0..2 * motions as i32)
+                .map(|c| {
+                    let idx: Vec<usize> = (0..fragments.len())
+                        .filter(|&i| fragments[i] == c)
+                        .collect();
+                    fit_cluster(&points, &idx)
+                })
+                .collect();
             let what = scene.name.clone();
-            assert!(same_partition_on_inliers(&labels, &truth), "{what}");
-            assert_eq!(labels.iter().max(), Some(&(motions as i32 - 1)), "{what}");
+            for labels in [
+                merge_refitted(&points, &fragments, 2 * motions, &params),
+                merge_anchored(&points, &fragments, 2 * motions, &anchors, &params),
+                merge_anchored(&points, &fragments, 2 * motions, &[], &params),
+            ] {
+                assert!(same_partition_on_inliers(&labels, &truth), "{what}");
+                assert_eq!(labels.iter().max(), Some(&(motions as i32 - 1)), "{what}");
+            }
             // One fragment per motion: nothing to merge, the labels stay.
             let halves: Vec<i32> = fragments
                 .iter()
                 .map(|&l| if l % 2 == 0 { l / 2 } else { -1 })
                 .collect();
-            let kept = merge_refitted(&points, &halves, motions, &params);
-            assert!(
-                same_partition_on_inliers(
-                    &kept,
-                    &halves.iter().map(|&l| l + 1).collect::<Vec<_>>()
-                ),
-                "{what}"
-            );
-            assert_eq!(kept.iter().max(), Some(&(motions as i32 - 1)), "{what}");
+            let half_anchors: Vec<_> = anchors.iter().step_by(2).copied().collect();
+            for kept in [
+                merge_refitted(&points, &halves, motions, &params),
+                merge_anchored(&points, &halves, motions, &half_anchors, &params),
+            ] {
+                let truth_halves: Vec<i32> = halves.iter().map(|&l| l + 1).collect();
+                assert!(same_partition_on_inliers(&kept, &truth_halves), "{what}");
+                assert_eq!(kept.iter().max(), Some(&(motions as i32 - 1)), "{what}");
+            }
         }
     }
 }

@@ -85,6 +85,8 @@ EXPERIMENT FILE (TOML)
                                hypothesis explains 80 % of its matches)
                                | merge-refit (merge, then a cluster joins a larger
                                one when the F refitted on both explains 80 % of each)
+                               | merge-anchored (the same, the refit started from the
+                               larger cluster's model)
   duplicate_filter = \"none\"   none | same-inliers (one hypothesis per distinct
                                inlier set enters the preferences)
   cluster_subset = 0           > 0: steps 1-9 on this many random matches, the others
