@@ -6,17 +6,20 @@
 //! (ground-truth inliers mislabelled) into inliers called outliers, inliers
 //! in a fragment and inliers in another motion's cluster. Scenes and
 //! sampling seeds are those of `sctl run` on the same preset and indices.
+//! `--config` takes the parameters of a file's `[pipeline]` table (its
+//! `profile` and the keys it gives), `--profile` those of a profile.
 //!
 //! ```text
 //! cargo run --release -p bench --example cluster_anatomy -- \
 //!     [--preset adelaide-like] [--from 800] [--to 819] [--profile fast] \
-//!     [--num-samples M] [--seeds 12345,23456,34567]
+//!     [--config FILE.toml] [--num-samples M] [--seeds 12345,23456,34567]
 //! ```
 
+use bench::config::PipelineConfig;
 use bench::pipeline::{matches, scene_seed};
 use datasets::synthetic::Preset;
 use datasets::Scene;
-use segmentation::{segment, Params, Profile};
+use segmentation::{segment, subset_indices, Params, Profile};
 use std::process::ExitCode;
 
 struct Options {
@@ -50,6 +53,11 @@ fn parse(mut args: impl Iterator<Item = String>) -> Result<Options, String> {
                     .ok_or(format!("unknown profile {value}"))?
                     .params()
             }
+            "--config" => {
+                o.params = PipelineConfig::load(std::path::Path::new(&value))
+                    .map_err(|e| e.to_string())?
+                    .params()
+            }
             "--num-samples" => num_samples = Some(number(&value)? as usize),
             "--seeds" => o.seeds = value.split(',').map(number).collect::<Result<_, _>>()?,
             other => return Err(format!("unknown option {other}")),
@@ -71,13 +79,19 @@ struct Anatomy {
     fragments: usize,
     outlier_clusters: usize,
     gt_inliers: usize,
+    gt_outliers: usize,
+    outliers_in_clusters: usize,
     inliers_as_outliers: usize,
+    outside_subset_as_outliers: usize,
     inliers_in_fragments: usize,
     inliers_in_other_motion: usize,
 }
 
 impl Anatomy {
-    fn add(&mut self, truth: &[i32], labels: &[i32], motions: usize) {
+    /// One scene run: its ground truth (0 outlier, 1.. motions), the
+    /// predicted labels and which matches the clustering saw
+    /// (`cluster_subset`).
+    fn add(&mut self, truth: &[i32], labels: &[i32], motions: usize, clustered: &[bool]) {
         let clusters = labels.iter().map(|&l| l + 1).max().unwrap_or(0) as usize;
         // counts[c][t]: matches of cluster c with ground-truth label t.
         let mut counts = vec![vec![0usize; motions + 1]; clusters];
@@ -112,14 +126,19 @@ impl Anatomy {
         self.runs += 1;
         self.over += usize::from(clusters > motions);
         self.under += usize::from(clusters < motions);
-        for (&l, &t) in labels.iter().zip(truth) {
+        for ((&l, &t), &seen) in labels.iter().zip(truth).zip(clustered) {
             if t == 0 {
+                self.gt_outliers += 1;
+                self.outliers_in_clusters += usize::from(l >= 0);
                 continue;
             }
             self.gt_inliers += 1;
             let t = t as usize;
             match usize::try_from(l) {
-                Err(_) => self.inliers_as_outliers += 1,
+                Err(_) => {
+                    self.inliers_as_outliers += 1;
+                    self.outside_subset_as_outliers += usize::from(!seen);
+                }
                 Ok(c) if majority[c] == t && owner[t] != Some(c) => self.inliers_in_fragments += 1,
                 Ok(c) if majority[c] != t => self.inliers_in_other_motion += 1,
                 Ok(_) => {}
@@ -138,11 +157,17 @@ impl Anatomy {
             self.motion_clusters, self.fragments, self.outlier_clusters
         );
         println!(
-            "ground-truth inliers {}: {:.2} % called outliers, {:.2} % in fragments, {:.2} % in another motion's cluster",
+            "ground-truth inliers {}: {:.2} % called outliers ({:.2} % outside the clustered subset), {:.2} % in fragments, {:.2} % in another motion's cluster",
             self.gt_inliers,
             pct(self.inliers_as_outliers),
+            pct(self.outside_subset_as_outliers),
             pct(self.inliers_in_fragments),
             pct(self.inliers_in_other_motion)
+        );
+        println!(
+            "ground-truth outliers {}: {:.2} % in a cluster",
+            self.gt_outliers,
+            100.0 * self.outliers_in_clusters as f64 / self.gt_outliers.max(1) as f64
         );
     }
 }
@@ -175,8 +200,17 @@ fn main() -> ExitCode {
                     seed: scene_seed(seed, &scene.name),
                     ..o.params.clone()
                 };
+                let mut clustered = vec![false; scene.len()];
+                for i in subset_indices(p.seed, scene.len(), p.cluster_subset) {
+                    clustered[i] = true;
+                }
                 match segment(&matches(&scene), &p) {
-                    Ok(seg) => anatomy.add(&scene_labels(&scene), &seg.labels, scene.num_motions()),
+                    Ok(seg) => anatomy.add(
+                        &scene_labels(&scene),
+                        &seg.labels,
+                        scene.num_motions(),
+                        &clustered,
+                    ),
                     Err(e) => eprintln!("cluster_anatomy: {}: {e}", scene.name),
                 }
             }
