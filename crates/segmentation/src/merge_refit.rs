@@ -3,15 +3,14 @@
 //! [`crate::merge_explained`]): at small M no sampled hypothesis may span
 //! a motion that T-Linkage split, so the merge refits one.
 
-use crate::Params;
+use crate::{Params, MERGE_SHARE};
 use geometry::{sampson_distances_squared, Correspondences, IrlsParams, IrlsWorkspace};
 use nalgebra::Matrix3;
 
-use crate::MERGE_SHARE;
-
 /// New labels for `labels` (clusters `0..clusters`, −1 outliers) after
 /// merging clusters that one *refitted* model explains
-/// (`final_assignment = "merge-refit"`, run after [`merge_explained`]):
+/// (`final_assignment = "merge-refit"`, run after
+/// [`crate::merge_explained`]):
 ///
 /// 1. clusters are visited from the largest (the lower label on ties);
 ///    each earlier kept group `A` and the cluster `B` are refitted
@@ -25,7 +24,7 @@ use crate::MERGE_SHARE;
 ///    group;
 /// 3. labels are renumbered 0, 1, … by first appearance; outliers stay −1.
 ///
-/// Where [`merge_explained`] needs one sampled hypothesis to explain a
+/// Where [`crate::merge_explained`] needs one sampled hypothesis to explain a
 /// fragment, this needs one F to explain both: at small M no single
 /// sampled hypothesis may span a motion that T-Linkage split.
 /// `points` are the principal-point-centred matches the labels index.
@@ -134,7 +133,8 @@ struct UnionScore {
     model: Option<Matrix3<f64>>,
 }
 
-/// The union refit of [`merge_refitted`] and its buffers.
+/// The union refit of [`merge_refitted`] and [`merge_anchored`], and its
+/// buffers.
 struct UnionFit<'a> {
     points: &'a Correspondences,
     irls: IrlsParams,
