@@ -25,6 +25,8 @@ VARIANTS = [
     {"profile": "thesis", "tau_range": 0.25},
     {"profile": "fast"},
     {"profile": "fast", "preselect_matches": 24, "min_consensus": 10},
+    {"profile": "fast", "final_assignment": "merge-anchored", "recover_outliers": "refit"},
+    {"final_assignment": "merge-refit"},
 ]
 
 
@@ -137,6 +139,8 @@ def test_docstring_lists_every_key_with_its_default():
     ({"weight_sets": [[1, 2, 3]]}, "weight_sets"),
     ({"weight_sets": "kitti"}, "weight_sets"),
     ({"seed": -1}, "seed"),
+    ({"recover_outliers": "all"}, "recover_outliers"),
+    ({"final_assignment": "merge-all"}, "final_assignment"),
     ({"focal_solver": "external", "method": "semical"}, "external"),
 ])
 def test_bad_parameters_raise_value_error_naming_the_key(synthetic, kwargs, key):
