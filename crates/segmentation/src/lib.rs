@@ -21,7 +21,10 @@
 //!    keeps every refined hypothesis;
 //! 7. preferences (Eq. 38), 8. T-Linkage (Eqs. 39–40) or J-Linkage and
 //! 9. the size filter ([`segment_with`]), optionally followed by a final
-//!    assignment to refitted cluster models ([`reassign`]). On a large
+//!    assignment to refitted cluster models ([`reassign`]), merges of the
+//!    clusters one model explains ([`merge_explained`], [`merge_refitted`],
+//!    [`merge_anchored`]) and the outliers' recovery by refitted cluster
+//!    models ([`recover_outliers`]). On a large
 //!    scene steps 1–9 may run on a random subset of the matches, the
 //!    others joining the clusters afterwards ([`extend_labels`]).
 //!
