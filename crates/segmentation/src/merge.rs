@@ -86,8 +86,7 @@ fn contains(words: &[u64], i: usize) -> bool {
 pub fn merge_explained(labels: &[i32], clusters: usize, inliers: &InlierBits) -> Vec<i32> {
     let members = crate::assignment::members(labels, clusters);
     let models = best_hypotheses(labels, clusters, inliers);
-    let mut order: Vec<usize> = (0..clusters).collect();
-    order.sort_by_key(|&c| (std::cmp::Reverse(members[c].len()), c));
+    let order = largest_first(&members);
 
     let mut target: Vec<usize> = (0..clusters).collect();
     let mut kept: Vec<usize> = Vec::new();
@@ -110,14 +109,29 @@ pub fn merge_explained(labels: &[i32], clusters: usize, inliers: &InlierBits) ->
             _ => kept.push(b),
         }
     }
+    apply_merges(labels, &target)
+}
+
+/// The clusters (indices of `members`) from the largest down, the lower
+/// index on ties: the order in which the merges visit them.
+pub(crate) fn largest_first(members: &[Vec<usize>]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..members.len()).collect();
+    order.sort_by_key(|&c| (std::cmp::Reverse(members[c].len()), c));
+    order
+}
+
+/// `labels` with each cluster `l` replaced by `target[l]` (every target
+/// `< target.len()`), then renumbered 0, 1, … by first appearance;
+/// outliers and labels out of range stay −1.
+pub(crate) fn apply_merges(labels: &[i32], target: &[usize]) -> Vec<i32> {
     let merged: Vec<i32> = labels
         .iter()
         .map(|&l| match usize::try_from(l) {
-            Ok(l) if l < clusters => target[l] as i32,
+            Ok(l) if l < target.len() => target[l] as i32,
             _ => -1,
         })
         .collect();
-    crate::assignment::drop_small_and_renumber(&merged, clusters, 0)
+    crate::assignment::drop_small_and_renumber(&merged, target.len(), 0)
 }
 
 /// For each cluster, the hypothesis with the most inliers among its

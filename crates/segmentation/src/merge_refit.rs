@@ -3,6 +3,7 @@
 //! [`crate::merge_explained`]): at small M no sampled hypothesis may span
 //! a motion that T-Linkage split, so the merge refits one.
 
+use crate::merge::{apply_merges, largest_first};
 use crate::{Params, MERGE_SHARE};
 use geometry::{sampson_distances_squared, Correspondences, IrlsParams, IrlsWorkspace};
 use nalgebra::Matrix3;
@@ -72,8 +73,7 @@ fn merge_by_union_fit(
     params: &Params,
 ) -> Vec<i32> {
     let members = crate::assignment::members(labels, clusters);
-    let mut order: Vec<usize> = (0..clusters).collect();
-    order.sort_by_key(|&c| (std::cmp::Reverse(members[c].len()), c));
+    let order = largest_first(&members);
     let mut union_fit = UnionFit::new(points, params);
 
     let mut target = vec![0usize; clusters];
@@ -109,14 +109,7 @@ fn merge_by_union_fit(
             }
         }
     }
-    let merged: Vec<i32> = labels
-        .iter()
-        .map(|&l| match usize::try_from(l) {
-            Ok(l) if l < clusters => target[l] as i32,
-            _ => -1,
-        })
-        .collect();
-    crate::assignment::drop_small_and_renumber(&merged, groups.len(), 0)
+    apply_merges(labels, &target)
 }
 
 /// A group of merged clusters: its matches, increasing, and the model its

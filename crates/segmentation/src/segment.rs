@@ -245,27 +245,9 @@ fn cluster_kept(
             clustering.clusters_after_filter,
             params,
         )),
-        FinalAssignment::Merge => with_count(merge_explained(
-            &clustering.labels,
-            clustering.clusters_after_filter,
-            &step7.inliers,
-        )),
-        FinalAssignment::MergeRefit => {
-            let (merged, count) = with_count(merge_explained(
-                &clustering.labels,
-                clustering.clusters_after_filter,
-                &step7.inliers,
-            ));
-            with_count(merge_refitted(points, &merged, count, params))
-        }
-        FinalAssignment::MergeAnchored => {
-            let (merged, count) = with_count(merge_explained(
-                &clustering.labels,
-                clustering.clusters_after_filter,
-                &step7.inliers,
-            ));
-            let anchors = cluster_hypotheses(&merged, count, &step7.inliers, &step7.models);
-            with_count(merge_anchored(points, &merged, count, &anchors, params))
+        FinalAssignment::Merge | FinalAssignment::MergeRefit | FinalAssignment::MergeAnchored => {
+            let (labels, count) = (&clustering.labels, clustering.clusters_after_filter);
+            merged_clusters(points, labels, count, &step7.inliers, &step7.models, params)
         }
     };
     let (labels, all_points) = if subset_active {
@@ -291,6 +273,31 @@ fn cluster_kept(
     segmentation.clusters_before_filter = clustering.clusters_before_filter;
     segmentation.labels = labels;
     Ok(())
+}
+
+/// The merges of `final_assignment = "merge"`, `"merge-refit"` and
+/// `"merge-anchored"`: [`merge_explained`], then for the latter two the
+/// union refits of [`merge_refitted`] or [`merge_anchored`] (anchored at
+/// each merged cluster's best-supported hypothesis among `models`, the
+/// hypotheses that entered the preferences). The labels and their cluster
+/// count.
+fn merged_clusters(
+    points: &Correspondences,
+    labels: &[i32],
+    clusters: usize,
+    inliers: &InlierBits,
+    models: &[Matrix3<f64>],
+    params: &Params,
+) -> (Vec<i32>, usize) {
+    let (merged, count) = with_count(merge_explained(labels, clusters, inliers));
+    match params.final_assignment {
+        FinalAssignment::MergeRefit => with_count(merge_refitted(points, &merged, count, params)),
+        FinalAssignment::MergeAnchored => {
+            let anchors = cluster_hypotheses(&merged, count, inliers, models);
+            with_count(merge_anchored(points, &merged, count, &anchors, params))
+        }
+        _ => (merged, count),
+    }
 }
 
 /// What step 7 gives steps 8–9: the preferences, the inlier sets of the

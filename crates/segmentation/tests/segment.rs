@@ -374,6 +374,21 @@ fn noise_free_scene(category: u32, index: u32) -> Scene {
     .scene
 }
 
+/// The noise-free scenes 1/0900, 2/0900 and 2/0901 of the final-assignment
+/// tests, each with its ground truth and its principal-point-centred
+/// points under `params`.
+fn noise_free_cases(params: &Params) -> Vec<(Scene, Vec<i32>, geometry::Correspondences)> {
+    [(1, 900), (2, 900), (2, 901)]
+        .into_iter()
+        .map(|(category, index)| {
+            let scene = noise_free_scene(category, index);
+            let truth = scene.labels.clone().unwrap();
+            let points = segmentation::centred_points(&matches(&scene), params).unwrap();
+            (scene, truth, points)
+        })
+        .collect()
+}
+
 /// True when `labels` equal `truth` (0 = outlier, 1..k motions) up to a
 /// renumbering on every match the truth calls an inlier (outliers of the
 /// generator are gross mismatches).
@@ -391,13 +406,10 @@ fn same_partition_on_inliers(labels: &[i32], truth: &[i32]) -> bool {
 
 #[test]
 fn the_final_assignment_recovers_noise_free_labels_exactly() {
-    use segmentation::{centred_points, reassign};
+    use segmentation::reassign;
     let params = Params::default();
-    for (category, index) in [(1, 900), (2, 900), (2, 901)] {
-        let scene = noise_free_scene(category, index);
-        let truth = scene.labels.clone().unwrap();
+    for (scene, truth, points) in noise_free_cases(&params) {
         let motions = scene.num_motions();
-        let points = centred_points(&matches(&scene), &params).unwrap();
         // A clustering (labels 0..motions) that left every fifth inlier
         // and every outlier out: the refits must take the left-out inliers
         // back. (A cluster holding a tenth of another motion's matches is
@@ -451,13 +463,10 @@ fn the_final_assignment_recovers_noise_free_labels_exactly() {
 
 #[test]
 fn merges_by_refit_join_the_fragments_of_a_motion_and_keep_motions_apart() {
-    use segmentation::{centred_points, fit_cluster, merge_anchored, merge_refitted};
+    use segmentation::{fit_cluster, merge_anchored, merge_refitted};
     for params in [Params::default(), Params::fast()] {
-        for (category, index) in [(1, 900), (2, 900), (2, 901)] {
-            let scene = noise_free_scene(category, index);
-            let truth = scene.labels.clone().unwrap();
+        for (scene, truth, points) in noise_free_cases(&params) {
             let motions = scene.num_motions();
-            let points = centred_points(&matches(&scene), &params).unwrap();
             // Every motion split in two interleaved fragments (labels
             // 2 (t - 1) and 2 (t - 1) + 1), the gross outliers left out.
             let fragments: Vec<i32> = truth
@@ -509,13 +518,10 @@ fn merges_by_refit_join_the_fragments_of_a_motion_and_keep_motions_apart() {
 
 #[test]
 fn outlier_recovery_takes_back_the_left_out_inliers_and_moves_no_one_else() {
-    use segmentation::{centred_points, recover_outliers};
+    use segmentation::recover_outliers;
     for params in [Params::default(), Params::fast()] {
-        for (category, index) in [(1, 900), (2, 900), (2, 901)] {
-            let scene = noise_free_scene(category, index);
-            let truth = scene.labels.clone().unwrap();
+        for (scene, truth, points) in noise_free_cases(&params) {
             let motions = scene.num_motions();
-            let points = centred_points(&matches(&scene), &params).unwrap();
             // Every third inlier and every gross outlier left out.
             let clustered: Vec<i32> = truth
                 .iter()
