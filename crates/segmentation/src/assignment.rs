@@ -9,10 +9,20 @@ use geometry::{sampson_distances_squared, Correspondences, IrlsParams, IrlsWorks
 use nalgebra::Matrix3;
 
 /// IRLS-Tukey iterations of the cluster refits that follow the clustering
-/// ([`crate::merge_refitted`], [`recover_outliers`]): the default's
+/// ([`crate::merge_refitted`], [`crate::merge_anchored`],
+/// [`recover_outliers`]): the default's
 /// `irls_iters`, whatever the profile's (the fast profile's one iteration
 /// leaves a cluster's 8-point, which its wrong matches pull off).
 pub const CLUSTER_REFIT_ITERS: usize = 5;
+
+/// `params`' IRLS settings with [`CLUSTER_REFIT_ITERS`] iterations: the
+/// refits that follow the clustering.
+pub(crate) fn cluster_refit_irls(params: &Params) -> IrlsParams {
+    IrlsParams {
+        max_iters: CLUSTER_REFIT_ITERS,
+        ..params.irls()
+    }
+}
 
 /// New labels for `labels` (clusters `0..clusters`, −1 outliers):
 ///
@@ -59,10 +69,7 @@ pub fn recover_outliers(
     clusters: usize,
     params: &Params,
 ) -> Vec<i32> {
-    let irls = IrlsParams {
-        max_iters: CLUSTER_REFIT_ITERS,
-        ..params.irls()
-    };
+    let irls = cluster_refit_irls(params);
     let models = refit_clusters(points, &members(labels, clusters), &irls);
     let nearest = nearest_model(points, &models, params.thr_px * params.thr_px);
     let recovered: Vec<i32> = labels

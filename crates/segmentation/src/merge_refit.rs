@@ -3,6 +3,7 @@
 //! [`crate::merge_explained`]): at small M no sampled hypothesis may span
 //! a motion that T-Linkage split, so the merge refits one.
 
+use crate::assignment::cluster_refit_irls;
 use crate::merge::{apply_merges, largest_first};
 use crate::{Params, MERGE_SHARE};
 use geometry::{sampson_distances_squared, Correspondences, IrlsParams, IrlsWorkspace};
@@ -140,10 +141,7 @@ impl<'a> UnionFit<'a> {
     fn new(points: &'a Correspondences, params: &Params) -> Self {
         Self {
             points,
-            irls: IrlsParams {
-                max_iters: crate::CLUSTER_REFIT_ITERS,
-                ..params.irls()
-            },
+            irls: cluster_refit_irls(params),
             thr2: params.thr_px * params.thr_px,
             workspace: IrlsWorkspace::new(),
             residuals: vec![0.0; points.len()],
