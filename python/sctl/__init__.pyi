@@ -125,7 +125,9 @@ def segment(
     final_assignment: Literal["merge", "none", "refit"] = "merge",
     duplicate_filter: Literal["none", "same-inliers"] = "none",
     cluster_subset: int = 0,
-    subset_extension: Literal["preference-explained", "preference", "model"] = "preference-explained",
+    subset_extension: Literal[
+        "preference-explained", "preference", "model", "preference-refit", "model-refit"
+    ] = "preference-explained",
     max_memory_mb: int = 0,
 ) -> Segmentation:
     """Segments matches into rigid motions (T-Linkage of five-point

@@ -10,7 +10,7 @@ use nalgebra::Matrix3;
 
 /// IRLS-Tukey iterations of the cluster refits that follow the clustering
 /// ([`crate::merge_refitted`], [`crate::merge_anchored`],
-/// [`recover_outliers`]): the default's
+/// [`recover_outliers`], the refitted [`crate::SubsetExtension`]s): the default's
 /// `irls_iters`, whatever the profile's (the fast profile's one iteration
 /// leaves a cluster's 8-point, which its wrong matches pull off).
 pub const CLUSTER_REFIT_ITERS: usize = 5;
@@ -92,7 +92,7 @@ pub(crate) fn members(labels: &[i32], clusters: usize) -> Vec<Vec<usize>> {
 }
 
 /// IRLS-Tukey F of each cluster from its matches (None when it fails).
-fn refit_clusters(
+pub(crate) fn refit_clusters(
     points: &Correspondences,
     members: &[Vec<usize>],
     irls: &IrlsParams,

@@ -82,4 +82,4 @@ pub use sampling::{
     hypothesis_rng, minimal_sample, neighbourhood_size, splitmix64, MinimalSampler,
 };
 pub use segment::{fit_cluster, segment, segment_with};
-pub use subset::{extend_labels, subset_indices, ClusteredSubset};
+pub use subset::{extend_labels, refitted_cluster_models, subset_indices, ClusteredSubset};

@@ -216,8 +216,10 @@ pub struct Params {
     /// vector in Tanimoto distance, the subset's outliers a class of their
     /// own), `preference-explained` (the same, then an outlier unless the
     /// cluster's best-supported hypothesis explains it within `thr_px`) or
-    /// `model` (the nearest best-supported hypothesis within `thr_px`).
-    /// Default `preference-explained` (results/README.md, "Real-sized
+    /// `model` (the nearest best-supported hypothesis within `thr_px`);
+    /// `preference-refit` and `model-refit` are the last two with each
+    /// cluster's model refitted by IRLS-Tukey on its clustered matches
+    /// ([`crate::refitted_cluster_models`]). Default `preference-explained` (results/README.md, "Real-sized
     /// scenes").
     pub subset_extension: SubsetExtension,
     /// After the final assignment and the subset's extension: `none` (the

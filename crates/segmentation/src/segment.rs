@@ -1,7 +1,7 @@
 //! Algorithm 1 end to end (method.md steps 1–9), and steps 5–9 on
 //! hypotheses and focals computed beforehand.
 
-use crate::assignment::members;
+use crate::assignment::{cluster_refit_irls, members};
 use crate::merge::{cluster_hypotheses, inlier_words};
 use crate::{
     centred_points, estimate_hypothesis_focals, extend_labels, focal_filter, generate_hypotheses,
@@ -259,7 +259,9 @@ fn cluster_kept(
         };
         let tau = params.thr_px * params.thr_px;
         let how = params.subset_extension;
-        let labels = extend_labels(&all, subset, &step7.models, &step7.inliers, tau, how);
+        let irls = cluster_refit_irls(params);
+        let (models, inliers) = (&step7.models, &step7.inliers);
+        let labels = extend_labels(&all, subset, models, inliers, tau, how, &irls);
         (labels, Cow::Owned(all))
     } else {
         (labels, Cow::Borrowed(points))

@@ -12,11 +12,11 @@
 //! the geometric test of Progressive-X's final assignment (Barath & Matas,
 //! ICCV 2019).
 
-use crate::assignment::{drop_small_and_renumber, nearest_model};
+use crate::assignment::{drop_small_and_renumber, members, nearest_model, refit_clusters};
 use crate::merge::cluster_hypotheses;
 use crate::{hypothesis_rng, InlierBits, SubsetExtension};
 use clustering::preference;
-use geometry::{sampson_distances_squared, Correspondences, SampsonModels};
+use geometry::{sampson_distances_squared, Correspondences, IrlsParams, SampsonModels};
 use nalgebra::Matrix3;
 use rayon::prelude::*;
 
@@ -81,10 +81,15 @@ pub struct ClusteredSubset<'a> {
 ///   it is an outlier;
 /// * [`SubsetExtension::PreferenceExplained`]: as `Preference`, and the
 ///   match is an outlier unless the joined cluster's model (as for
-///   `Model`) explains it (`≤ tau`).
+///   `Model`) explains it (`≤ tau`);
+/// * [`SubsetExtension::ModelRefit`] and
+///   [`SubsetExtension::PreferenceRefit`]: as `Model` and
+///   `PreferenceExplained`, with each cluster's model the F refitted by
+///   IRLS-Tukey (Eqs. 33–34, `irls`) from the 8-point of the cluster's
+///   matches in the subset ([`refitted_cluster_models`]).
 ///
-/// Labels are then renumbered 0, 1, … by first appearance, as the
-/// clustering numbers them.
+/// `irls` is read by the two refits only. Labels are then renumbered 0,
+/// 1, … by first appearance, as the clustering numbers them.
 pub fn extend_labels(
     points: &Correspondences,
     subset: ClusteredSubset,
@@ -92,20 +97,51 @@ pub fn extend_labels(
     inliers: &InlierBits,
     tau: f64,
     how: SubsetExtension,
+    irls: &IrlsParams,
 ) -> Vec<i32> {
     let cluster_models = || cluster_hypotheses(subset.labels, subset.clusters, inliers, models);
+    let refitted = || refitted_cluster_models(points, subset, cluster_models(), irls);
     let mut labels = match how {
         SubsetExtension::Preference => nearest_mean_preference(points, subset, models, tau),
         SubsetExtension::Model => nearest_model(points, &cluster_models(), tau),
+        SubsetExtension::ModelRefit => nearest_model(points, &refitted(), tau),
         SubsetExtension::PreferenceExplained => {
             let labels = nearest_mean_preference(points, subset, models, tau);
             unexplained_to_outliers(points, labels, &cluster_models(), tau)
+        }
+        SubsetExtension::PreferenceRefit => {
+            let labels = nearest_mean_preference(points, subset, models, tau);
+            unexplained_to_outliers(points, labels, &refitted(), tau)
         }
     };
     for (&i, &label) in subset.indices.iter().zip(subset.labels) {
         labels[i] = label;
     }
     drop_small_and_renumber(&labels, subset.clusters, 0)
+}
+
+/// The model of each of the subset's clusters for the refitted
+/// extensions: the F fitted by IRLS-Tukey (Eqs. 33–34, `irls`) from the
+/// 8-point of the cluster's matches in the subset, or, where that fit
+/// fails (fewer than 8 matches, degenerate), `sampled`, the cluster's
+/// best-supported hypothesis. The sampled hypotheses were fitted to their
+/// own consensus sets; at small M none may span a whole motion, and its
+/// matches far from the sample then fail the `thr_px` test.
+pub fn refitted_cluster_models(
+    points: &Correspondences,
+    subset: ClusteredSubset,
+    sampled: Vec<Option<Matrix3<f64>>>,
+    irls: &IrlsParams,
+) -> Vec<Option<Matrix3<f64>>> {
+    let members: Vec<Vec<usize>> = members(subset.labels, subset.clusters)
+        .into_iter()
+        .map(|ks| ks.into_iter().map(|k| subset.indices[k]).collect())
+        .collect();
+    refit_clusters(points, &members, irls)
+        .into_iter()
+        .zip(sampled)
+        .map(|(refit, sampled)| refit.or(sampled))
+        .collect()
 }
 
 /// `labels` with every match whose cluster's model does not explain it
@@ -360,24 +396,17 @@ mod tests {
             translation([1.0, 0.0]),
             translation([3.0, 5.0]),
         ];
-        for how in [
-            SubsetExtension::Preference,
-            SubsetExtension::Model,
-            SubsetExtension::PreferenceExplained,
-        ] {
+        for how in ALL_EXTENSIONS {
             let bits = inliers(&points, &indices, &models, 1e-9);
-            let out = extend_labels(&points, subset, &models, &bits, 1e-9, how);
+            let out = extend_labels(&points, subset, &models, &bits, 1e-9, how, &irls());
             assert_eq!(out, expected, "{how:?}");
         }
         // Without the second motion's model its left-out matches prefer
-        // nothing (Preference) or have no model (Model): outliers.
-        for how in [
-            SubsetExtension::Preference,
-            SubsetExtension::Model,
-            SubsetExtension::PreferenceExplained,
-        ] {
+        // nothing (Preference) or have no model (Model; its five matches in
+        // the subset are too few to refit): outliers.
+        for how in ALL_EXTENSIONS {
             let bits = inliers(&points, &indices, &models[2..], 1e-9);
-            let out = extend_labels(&points, subset, &models[2..], &bits, 1e-9, how);
+            let out = extend_labels(&points, subset, &models[2..], &bits, 1e-9, how, &irls());
             for (i, &l) in out.iter().enumerate() {
                 let left_out_of_b = (20..40).contains(&i) && !indices.contains(&i);
                 let want = if left_out_of_b { -1 } else { expected[i] };
@@ -406,9 +435,86 @@ mod tests {
         };
         let models = [translation([10.0, 0.0]), translation([0.0, 10.0])];
         let bits = inliers(&points, &indices, &models, 1.0);
-        let label_of_40 = |how| extend_labels(&points, subset, &models, &bits, 1.0, how)[40];
+        let label_of_40 =
+            |how| extend_labels(&points, subset, &models, &bits, 1.0, how, &irls())[40];
         assert_eq!(label_of_40(SubsetExtension::Preference), 0);
         assert_eq!(label_of_40(SubsetExtension::PreferenceExplained), -1);
         assert_eq!(label_of_40(SubsetExtension::Model), -1);
+    }
+
+    /// The homography of [`one_motion`].
+    fn motion_homography() -> Matrix3<f64> {
+        Matrix3::new(1.02, 0.01, 3.0, -0.015, 0.99, -2.0, 1e-4, -5e-5, 1.0)
+    }
+
+    /// `n` noise-free matches of one rigid motion, `F = [e]× H` with
+    /// epipole `e = (400, 150)` and `H` [`motion_homography`]: match `i`
+    /// has parallax `λᵢ` along its epipolar line, `x2 = Hx1 + λᵢ (Hx1 −
+    /// e)`, `|λᵢ| ≤ 0.1`.
+    fn one_motion(n: usize) -> Correspondences {
+        let (h, e) = (
+            motion_homography(),
+            nalgebra::Vector3::new(400.0, 150.0, 1.0),
+        );
+        let (mut p1, mut p2) = (Vec::new(), Vec::new());
+        for i in 0..n {
+            let x1 = [(i * 37 % 101) as f64 - 50.0, (i * 53 % 97) as f64 - 48.0];
+            let hx = h * nalgebra::Vector3::new(x1[0], x1[1], 1.0);
+            let hx = [hx.x / hx.z, hx.y / hx.z];
+            let lambda = ((i * 29 % 23) as f64 / 22.0 - 0.5) * 0.2;
+            p1.push(x1);
+            p2.push([
+                hx[0] + lambda * (hx[0] - e.x),
+                hx[1] + lambda * (hx[1] - e.y),
+            ]);
+        }
+        Correspondences::new(&p1, &p2).unwrap()
+    }
+
+    #[test]
+    fn a_refitted_model_explains_the_matches_the_sampled_one_misses() {
+        // The sampled hypothesis has its epipole 20 px off: it explains
+        // the matches of small parallax only.
+        let points = one_motion(90);
+        let sampled =
+            nalgebra::Vector3::new(400.0, 170.0, 1.0).cross_matrix() * motion_homography();
+        let indices: Vec<usize> = (0..90).step_by(3).collect();
+        let labels = vec![0; indices.len()];
+        let subset = ClusteredSubset {
+            indices: &indices,
+            labels: &labels,
+            clusters: 1,
+        };
+        let (models, tau) = ([sampled], 0.01);
+        let mut r = vec![0.0; 90];
+        sampson_distances_squared(&sampled, &points, &mut r);
+        let missed = |i: usize| i % 3 != 0 && r[i] > tau;
+        assert!((0..90).filter(|&i| missed(i)).count() >= 20);
+        let bits = inliers(&points, &indices, &models, tau);
+        let extend = |how| extend_labels(&points, subset, &models, &bits, tau, how, &irls());
+        for how in [SubsetExtension::Model, SubsetExtension::PreferenceExplained] {
+            let out = extend(how);
+            assert!((0..90).all(|i| (out[i] == -1) == missed(i)), "{how:?}");
+        }
+        // The refits explain every match; preference joins only those
+        // that prefer the sampled model (within 5 tau).
+        assert_eq!(extend(SubsetExtension::ModelRefit), vec![0; 90]);
+        let out = extend(SubsetExtension::PreferenceRefit);
+        let preferring = |i: usize| i % 3 == 0 || preference(r[i], tau) > 0.0;
+        assert!((0..90).all(|i| (out[i] == 0) == preferring(i)), "{out:?}");
+        assert!((0..90).filter(|&i| missed(i) && out[i] == 0).count() > 0);
+    }
+
+    const ALL_EXTENSIONS: [SubsetExtension; 5] = [
+        SubsetExtension::Preference,
+        SubsetExtension::Model,
+        SubsetExtension::PreferenceExplained,
+        SubsetExtension::ModelRefit,
+        SubsetExtension::PreferenceRefit,
+    ];
+
+    /// The refits' settings: the default's, five iterations.
+    fn irls() -> IrlsParams {
+        crate::assignment::cluster_refit_irls(&crate::Params::default())
     }
 }

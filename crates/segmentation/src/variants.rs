@@ -217,6 +217,14 @@ param_enum! {
         /// By preference, as `Preference`, and an outlier unless the joined
         /// cluster's best-supported hypothesis explains it within `thr_px`.
         PreferenceExplained,
+        /// As `Model`, each cluster's model the F refitted by IRLS-Tukey
+        /// on the cluster's matches in the subset
+        /// ([`crate::refitted_cluster_models`]).
+        ModelRefit,
+        /// As `PreferenceExplained`, each cluster's model the F refitted by
+        /// IRLS-Tukey on the cluster's matches in the subset
+        /// ([`crate::refitted_cluster_models`]).
+        PreferenceRefit,
     }
 }
 

@@ -731,7 +731,12 @@ fn clustering_a_subset_recovers_noise_free_labels_at_any_thread_count() {
     for (category, index) in [(1, 900), (2, 900)] {
         let scene = noise_free_scene(category, index);
         let truth = scene.labels.clone().unwrap();
-        for how in [SubsetExtension::Preference, SubsetExtension::Model] {
+        for how in [
+            SubsetExtension::Preference,
+            SubsetExtension::Model,
+            SubsetExtension::ModelRefit,
+            SubsetExtension::PreferenceRefit,
+        ] {
             let params = Params {
                 num_samples: 300,
                 cluster_subset: truth.len() / 2,

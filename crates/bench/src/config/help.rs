@@ -94,6 +94,8 @@ EXPERIMENT FILE (TOML)
   subset_extension = \"preference-explained\"   how: preference-explained (nearest mean
                                preference vector, within thr_px of its cluster's model)
                                | preference | model (nearest cluster model)
+                               | preference-refit | model-refit (the cluster models
+                               refitted by IRLS on the clustered matches)
   recover_outliers = \"none\"   none | refit (each cluster's F refitted by IRLS; an
                                outlier joins the cluster that explains it best)
   max_memory_mb = 0            > 0: refuse (at once) a scene whose clustering
