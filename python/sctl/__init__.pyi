@@ -126,7 +126,12 @@ def segment(
     duplicate_filter: Literal["none", "same-inliers"] = "none",
     cluster_subset: int = 0,
     subset_extension: Literal[
-        "preference-explained", "preference", "model", "preference-refit", "model-refit"
+        "preference-explained",
+        "preference",
+        "model",
+        "preference-refit",
+        "model-refit",
+        "neighbours",
     ] = "preference-explained",
     max_memory_mb: int = 0,
 ) -> Segmentation:

@@ -79,7 +79,7 @@ use std::fmt::Write as _;
 ///     - final_assignment = "merge"  ("merge": clusters one model explains joined, "none", "refit": refitted cluster models, nearest within thr_px, "merge-refit": merge, then clusters one F refitted on both explains joined, or "merge-anchored": the same, the refit started from the larger cluster's model)
 ///     - duplicate_filter = "none"   ("none", or "same-inliers": one hypothesis per distinct inlier set)
 ///     - cluster_subset = 0          (> 0: steps 1-9 on this many random matches, the others join the nearest cluster)
-///     - subset_extension = "preference-explained"  ("preference-explained": nearest mean preference vector, within thr_px of that cluster's model; "preference": without that test; "model": nearest cluster model; "preference-refit", "model-refit": as "preference-explained" and "model" with each cluster's model refitted by IRLS on its clustered matches)
+///     - subset_extension = "preference-explained"  ("preference-explained": nearest mean preference vector, within thr_px of that cluster's model; "preference": without that test; "model": nearest cluster model; "preference-refit", "model-refit": as "preference-explained" and "model" with each cluster's model refitted by IRLS on its clustered matches; "neighbours": the label of most of its 5 nearest clustered matches in (x1, y1, x2, y2), within thr_px of that cluster's model)
 ///     - recover_outliers = "none"   ("none", or "refit": each outlier joins the refitted cluster model that explains it best within thr_px)
 ///     - max_memory_mb = 0           (> 0: refuse a clustering that would need more memory, MB)
 ///

@@ -19,6 +19,7 @@ use bench::config::PipelineConfig;
 use bench::pipeline::{matches, scene_seed};
 use datasets::synthetic::Preset;
 use datasets::Scene;
+use geometry::{sampson_distances_squared, Correspondences};
 use segmentation::{segment, subset_indices, Params, Profile};
 use std::process::ExitCode;
 
@@ -85,6 +86,11 @@ struct Anatomy {
     outside_subset_as_outliers: usize,
     inliers_in_fragments: usize,
     inliers_in_other_motion: usize,
+    /// Ground-truth inliers farther than `thr_px` (Sampson) from their
+    /// motion's true F: no model can explain them.
+    inliers_beyond_thr: usize,
+    /// Ground-truth inliers within `thr_px` of another motion's true F.
+    inliers_ambiguous: usize,
 }
 
 impl Anatomy {
@@ -146,6 +152,30 @@ impl Anatomy {
         }
     }
 
+    /// The ground-truth inliers of `scene` beyond `thr_px` of their
+    /// motion's true F, and those within `thr_px` of another motion's.
+    fn add_true_models(&mut self, scene: &Scene, thr_px: f64) {
+        let (Some(truth), Ok(points)) = (
+            &scene.labels,
+            Correspondences::new(&scene.points1, &scene.points2),
+        ) else {
+            return;
+        };
+        let thr2 = thr_px * thr_px;
+        let mut r = vec![0.0; points.len()];
+        let mut explained_by = vec![Vec::new(); points.len()];
+        for (t, f) in scene.gt_fundamentals.iter().enumerate() {
+            sampson_distances_squared(f, &points, &mut r);
+            for (i, _) in r.iter().enumerate().filter(|(_, &d)| d <= thr2) {
+                explained_by[i].push(t as i32 + 1);
+            }
+        }
+        for (&l, by) in truth.iter().zip(&explained_by).filter(|(&l, _)| l > 0) {
+            self.inliers_beyond_thr += usize::from(!by.contains(&l));
+            self.inliers_ambiguous += usize::from(by.iter().any(|&t| t != l));
+        }
+    }
+
     fn print(&self) {
         let pct = |x: usize| 100.0 * x as f64 / self.gt_inliers.max(1) as f64;
         println!(
@@ -163,6 +193,11 @@ impl Anatomy {
             pct(self.outside_subset_as_outliers),
             pct(self.inliers_in_fragments),
             pct(self.inliers_in_other_motion)
+        );
+        println!(
+            "ground-truth inliers beyond thr_px of their motion's true F: {:.2} %; within thr_px of another motion's: {:.2} %",
+            pct(self.inliers_beyond_thr),
+            pct(self.inliers_ambiguous)
         );
         println!(
             "ground-truth outliers {}: {:.2} % in a cluster",
@@ -204,6 +239,7 @@ fn main() -> ExitCode {
                 for i in subset_indices(p.seed, scene.len(), p.cluster_subset) {
                     clustered[i] = true;
                 }
+                anatomy.add_true_models(&scene, p.thr_px);
                 match segment(&matches(&scene), &p) {
                     Ok(seg) => anatomy.add(
                         &scene_labels(&scene),

@@ -26,7 +26,10 @@
 //!    [`merge_anchored`]) and the outliers' recovery by refitted cluster
 //!    models ([`recover_outliers`]). On a large
 //!    scene steps 1–9 may run on a random subset of the matches, the
-//!    others joining the clusters afterwards ([`extend_labels`]).
+//!    others joining the clusters afterwards ([`extend_labels`]: by
+//!    preference, by sampled or refitted cluster models
+//!    ([`refitted_cluster_models`]) or by their nearest clustered
+//!    neighbours ([`EXTENSION_NEIGHBOURS`])).
 //!
 //! All geometry runs in principal-point-centred pixel coordinates: every F
 //! of a [`Segmentation`] satisfies `x2ᵀ F x1 = 0` for
@@ -45,6 +48,7 @@ mod input;
 mod merge;
 mod merge_refit;
 mod minimal;
+mod neighbours;
 mod params;
 mod profile;
 mod result;
@@ -67,6 +71,7 @@ pub use hypotheses::{centred_points, generate_hypotheses, GeneratedHypotheses};
 pub use input::{image_centre, Matches};
 pub use merge::{merge_explained, InlierBits, MERGE_SHARE};
 pub use merge_refit::{merge_anchored, merge_refitted};
+pub use neighbours::EXTENSION_NEIGHBOURS;
 pub use params::{
     DuplicateFilter, EightPoint, FinalAssignment, FocalKey, FocalSolver, HypothesisKey,
     ImplausibleFocal, IrlsFit, Linkage, LocalTest, Method, MinimalSolutions, MinimalSolver,

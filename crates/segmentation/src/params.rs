@@ -219,7 +219,10 @@ pub struct Params {
     /// `model` (the nearest best-supported hypothesis within `thr_px`);
     /// `preference-refit` and `model-refit` are the last two with each
     /// cluster's model refitted by IRLS-Tukey on its clustered matches
-    /// ([`crate::refitted_cluster_models`]). Default `preference-explained` (results/README.md, "Real-sized
+    /// ([`crate::refitted_cluster_models`]); `neighbours` (the label most
+    /// of its [`crate::EXTENSION_NEIGHBOURS`] nearest clustered matches in
+    /// (x₁, y₁, x₂, y₂) have, then an outlier unless that cluster's
+    /// best-supported hypothesis explains it within `thr_px`). Default `preference-explained` (results/README.md, "Real-sized
     /// scenes").
     pub subset_extension: SubsetExtension,
     /// After the final assignment and the subset's extension: `none` (the

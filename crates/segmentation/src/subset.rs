@@ -14,6 +14,7 @@
 
 use crate::assignment::{drop_small_and_renumber, members, nearest_model, refit_clusters};
 use crate::merge::cluster_hypotheses;
+use crate::neighbours::neighbour_vote;
 use crate::{hypothesis_rng, InlierBits, SubsetExtension};
 use clustering::preference;
 use geometry::{sampson_distances_squared, Correspondences, IrlsParams, SampsonModels};
@@ -86,7 +87,11 @@ pub struct ClusteredSubset<'a> {
 ///   [`SubsetExtension::PreferenceRefit`]: as `Model` and
 ///   `PreferenceExplained`, with each cluster's model the F refitted by
 ///   IRLS-Tukey (Eqs. 33–34, `irls`) from the 8-point of the cluster's
-///   matches in the subset ([`refitted_cluster_models`]).
+///   matches in the subset ([`refitted_cluster_models`]);
+/// * [`SubsetExtension::Neighbours`]: the label most of its
+///   [`crate::EXTENSION_NEIGHBOURS`] nearest matches of the subset in
+///   (x₁, y₁, x₂, y₂) have (the outliers a class), and an outlier unless
+///   that cluster's model (as for `Model`) explains it (`≤ tau`).
 ///
 /// `irls` is read by the two refits only. Labels are then renumbered 0,
 /// 1, … by first appearance, as the clustering numbers them.
@@ -112,6 +117,10 @@ pub fn extend_labels(
         SubsetExtension::PreferenceRefit => {
             let labels = nearest_mean_preference(points, subset, models, tau);
             unexplained_to_outliers(points, labels, &refitted(), tau)
+        }
+        SubsetExtension::Neighbours => {
+            let labels = neighbour_vote(points, subset);
+            unexplained_to_outliers(points, labels, &cluster_models(), tau)
         }
     };
     for (&i, &label) in subset.indices.iter().zip(subset.labels) {
@@ -396,7 +405,9 @@ mod tests {
             translation([1.0, 0.0]),
             translation([3.0, 5.0]),
         ];
-        for how in ALL_EXTENSIONS {
+        // (The motions are interleaved in the image: `Neighbours` has its
+        // own test.)
+        for how in BY_MODEL_OR_PREFERENCE {
             let bits = inliers(&points, &indices, &models, 1e-9);
             let out = extend_labels(&points, subset, &models, &bits, 1e-9, how, &irls());
             assert_eq!(out, expected, "{how:?}");
@@ -404,7 +415,7 @@ mod tests {
         // Without the second motion's model its left-out matches prefer
         // nothing (Preference) or have no model (Model; its five matches in
         // the subset are too few to refit): outliers.
-        for how in ALL_EXTENSIONS {
+        for how in BY_MODEL_OR_PREFERENCE {
             let bits = inliers(&points, &indices, &models[2..], 1e-9);
             let out = extend_labels(&points, subset, &models[2..], &bits, 1e-9, how, &irls());
             for (i, &l) in out.iter().enumerate() {
@@ -505,7 +516,43 @@ mod tests {
         assert!((0..90).filter(|&i| missed(i) && out[i] == 0).count() > 0);
     }
 
-    const ALL_EXTENSIONS: [SubsetExtension; 5] = [
+    #[test]
+    fn neighbours_part_two_motions_that_one_model_explains() {
+        // Two motions of the same F, side by side: x2 = x1 + (1, 0) on
+        // matches 0..40 and x2 = x1 + (2, 0) on 40..80, 200 px to the
+        // right. The one model explains both, and so does every
+        // preference. Left-out gross outlier 80 among the first motion's
+        // matches moves by (1, 9).
+        let base = shifted_matches(81, |_| [0.0, 0.0]);
+        let (mut p1, mut p2) = (Vec::new(), Vec::new());
+        for i in 0..81 {
+            let [x, y] = base.point1(i);
+            let (offset, d) = match i {
+                0..40 => (0.0, [1.0, 0.0]),
+                40..80 => (200.0, [2.0, 0.0]),
+                _ => (0.0, [1.0, 9.0]),
+            };
+            p1.push([x + offset, y]);
+            p2.push([x + offset + d[0], y + d[1]]);
+        }
+        let points = Correspondences::new(&p1, &p2).unwrap();
+        let truth: Vec<i32> = (0..81).map(|i| [0, 1, -1][i / 40]).collect();
+        let indices: Vec<usize> = (0..80).step_by(4).collect();
+        let labels: Vec<i32> = indices.iter().map(|&i| truth[i]).collect();
+        let subset = ClusteredSubset {
+            indices: &indices,
+            labels: &labels,
+            clusters: 2,
+        };
+        let (models, tau) = ([translation([1.0, 0.0])], 0.01);
+        let bits = inliers(&points, &indices, &models, tau);
+        let extend = |how| extend_labels(&points, subset, &models, &bits, tau, how, &irls());
+        assert_eq!(extend(SubsetExtension::Neighbours), truth);
+        let by_preference = extend(SubsetExtension::PreferenceExplained);
+        assert!(by_preference.iter().zip(&truth).any(|(a, b)| a != b));
+    }
+
+    const BY_MODEL_OR_PREFERENCE: [SubsetExtension; 5] = [
         SubsetExtension::Preference,
         SubsetExtension::Model,
         SubsetExtension::PreferenceExplained,

@@ -225,6 +225,12 @@ param_enum! {
         /// IRLS-Tukey on the cluster's matches in the subset
         /// ([`crate::refitted_cluster_models`]).
         PreferenceRefit,
+        /// By neighbours: the label most of the
+        /// [`crate::EXTENSION_NEIGHBOURS`] nearest clustered matches in
+        /// (x₁, y₁, x₂, y₂) have, the subset's outliers a class of their
+        /// own, and an outlier unless that cluster's best-supported
+        /// hypothesis explains it within `thr_px`.
+        Neighbours,
     }
 }
 

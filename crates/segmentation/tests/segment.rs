@@ -736,6 +736,7 @@ fn clustering_a_subset_recovers_noise_free_labels_at_any_thread_count() {
             SubsetExtension::Model,
             SubsetExtension::ModelRefit,
             SubsetExtension::PreferenceRefit,
+            SubsetExtension::Neighbours,
         ] {
             let params = Params {
                 num_samples: 300,

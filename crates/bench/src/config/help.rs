@@ -96,6 +96,8 @@ EXPERIMENT FILE (TOML)
                                | preference | model (nearest cluster model)
                                | preference-refit | model-refit (the cluster models
                                refitted by IRLS on the clustered matches)
+                               | neighbours (the label of most of its 5 nearest
+                               clustered matches, within thr_px of its model)
   recover_outliers = \"none\"   none | refit (each cluster's F refitted by IRLS; an
                                outlier joins the cluster that explains it best)
   max_memory_mb = 0            > 0: refuse (at once) a scene whose clustering
