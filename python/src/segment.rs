@@ -34,9 +34,9 @@ use std::fmt::Write as _;
 ///     (the defaults below), "thesis" (the thesis text's Algorithm 1:
 ///     method="semical", minimal_solver="eight-point"), "fast" (fewer
 ///     samples and IRLS iterations, guided sampling, 200 matches clustered
-///     and the others joined: 20-80 times faster per scene, within 2
-///     points of the default's ME on the synthetic test data, 5.9 % against
-///     4.1 % on AdelaideRMF) or "large" (1 000 matches and more: localized sampling,
+///     and the others joined: 12-33 times faster per scene, within 2
+///     points of the default's ME on the synthetic test data, 4.4 % against
+///     4.0 % on AdelaideRMF) or "large" (1 000 matches and more: localized sampling,
 ///     clusters under 2 % of the matches dropped). ``sctl.default_params(profile)`` lists its values.
 /// seed : int, default 12345
 ///     Seed of the hypothesis sampling. The labels depend on the input, the

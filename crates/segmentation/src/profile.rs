@@ -10,11 +10,11 @@ use crate::{MinimalSolutions, MinimalSolver, Params, Sampling, SizeRule};
 ///   merged clusters, Table 1 values);
 /// * `thesis`: [`Params::thesis`], the thesis text's semi-calibrated
 ///   Algorithm 1;
-/// * `fast`: [`Params::fast`], M 600, one IRLS iteration, the five-point
-///   roots scored before their polish, uniform and localized samples in
-///   turn, and 200 matches clustered, the others joined to the nearest
-///   cluster: seven to twenty times cheaper than `default`
-///   (results/README.md, "A fast profile");
+/// * `fast`: [`Params::fast`], M 400 drawn by guided sampling in batches
+///   of 50, one IRLS iteration, the five-point roots scored before their
+///   polish and the winner left unpolished, and 200 matches clustered, the
+///   others joined to the nearest cluster: about ten times cheaper than
+///   `default` (results/README.md, "A fast profile");
 /// * `large`: [`Params::large`], for scenes of 1 000 matches and more:
 ///   localized sampling, a minimum cluster size of 2 % of N and 1000
 ///   matches clustered, the others joined to the nearest cluster
@@ -112,12 +112,17 @@ impl Params {
     ///   and batches of 50 and 100, the cheapest within 0.89 points of the
     ///   default's ME over three seeds), then in batches of 50 again (the
     ///   same rule with the `adelaide-like` validation set added: batches of
-    ///   100 at M 200 are 1.19 points above the default there).
+    ///   100 at M 200 are 1.19 points above the default there);
+    /// * M 400 in batches of 50 (of guided M 200–800 in batches of 50 and
+    ///   100, the lowest ME summed over the three validation sets, five
+    ///   seeds, among those within 0.02 s per `adelaide-like` scene on one
+    ///   thread: results/README.md, "The most accurate setting within the
+    ///   time budget").
     pub fn fast() -> Self {
         Self {
             minimal_solver: MinimalSolver::FivePoint,
             minimal_solutions: MinimalSolutions::BestUnpolished,
-            num_samples: 200,
+            num_samples: 400,
             irls_iters: 1,
             cluster_subset: 200,
             sampling: Sampling::Guided,

@@ -39,9 +39,9 @@ pub struct Args {
     pub config: Option<PathBuf>,
     /// Named parameter set: default | thesis (the thesis text's Algorithm 1)
     /// | fast (fewer samples and IRLS iterations, guided sampling, 200 matches
-    /// clustered and the others joined: 20-80 times faster per scene, within
-    /// 2 points of the default's ME on the synthetic test data, 5.9 % against
-    /// 4.1 % on AdelaideRMF) | large (1 000 matches and more: localized
+    /// clustered and the others joined: 12-33 times faster per scene, within
+    /// 2 points of the default's ME on the synthetic test data, 4.4 % against
+    /// 4.0 % on AdelaideRMF) | large (1 000 matches and more: localized
     /// sampling, clusters under 2 % of the matches dropped, 1000 matches
     /// clustered and the others joined). With --config it replaces the file's
     /// `profile` key; the keys the file gives still override it [default:
