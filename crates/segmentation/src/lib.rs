@@ -45,6 +45,7 @@ mod focals;
 mod guided;
 mod hypotheses;
 mod input;
+mod mean_preference;
 mod merge;
 mod merge_refit;
 mod minimal;
