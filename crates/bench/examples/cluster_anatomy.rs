@@ -91,6 +91,9 @@ struct Anatomy {
     inliers_beyond_thr: usize,
     /// Ground-truth inliers within `thr_px` of another motion's true F.
     inliers_ambiguous: usize,
+    /// Ground-truth inliers of the scenes (once per scene, not per seed):
+    /// the denominator of the two counts above.
+    scene_inliers: usize,
 }
 
 impl Anatomy {
@@ -153,7 +156,8 @@ impl Anatomy {
     }
 
     /// The ground-truth inliers of `scene` beyond `thr_px` of their
-    /// motion's true F, and those within `thr_px` of another motion's.
+    /// motion's true F, and those within `thr_px` of another motion's
+    /// (properties of the scene, counted once whatever the seeds).
     fn add_true_models(&mut self, scene: &Scene, thr_px: f64) {
         let (Some(truth), Ok(points)) = (
             &scene.labels,
@@ -171,6 +175,7 @@ impl Anatomy {
             }
         }
         for (&l, by) in truth.iter().zip(&explained_by).filter(|(&l, _)| l > 0) {
+            self.scene_inliers += 1;
             self.inliers_beyond_thr += usize::from(!by.contains(&l));
             self.inliers_ambiguous += usize::from(by.iter().any(|&t| t != l));
         }
@@ -178,6 +183,7 @@ impl Anatomy {
 
     fn print(&self) {
         let pct = |x: usize| 100.0 * x as f64 / self.gt_inliers.max(1) as f64;
+        let of_scenes = |x: usize| 100.0 * x as f64 / self.scene_inliers.max(1) as f64;
         println!(
             "scene runs {}: over-counted {}, under-counted {}",
             self.runs, self.over, self.under
@@ -196,8 +202,8 @@ impl Anatomy {
         );
         println!(
             "ground-truth inliers beyond thr_px of their motion's true F: {:.2} %; within thr_px of another motion's: {:.2} %",
-            pct(self.inliers_beyond_thr),
-            pct(self.inliers_ambiguous)
+            of_scenes(self.inliers_beyond_thr),
+            of_scenes(self.inliers_ambiguous)
         );
         println!(
             "ground-truth outliers {}: {:.2} % in a cluster",
@@ -230,6 +236,7 @@ fn main() -> ExitCode {
                     return ExitCode::FAILURE;
                 }
             };
+            anatomy.add_true_models(&scene, o.params.thr_px);
             for &seed in &o.seeds {
                 let p = Params {
                     seed: scene_seed(seed, &scene.name),
@@ -239,7 +246,6 @@ fn main() -> ExitCode {
                 for i in subset_indices(p.seed, scene.len(), p.cluster_subset) {
                     clustered[i] = true;
                 }
-                anatomy.add_true_models(&scene, p.thr_px);
                 match segment(&matches(&scene), &p) {
                     Ok(seg) => anatomy.add(
                         &scene_labels(&scene),

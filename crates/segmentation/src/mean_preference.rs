@@ -123,8 +123,7 @@ pub(crate) fn nearest_mean_preference(
 ) -> Vec<i32> {
     let models = SampsonModels::new(models);
     let means = MeanPreferences::new(points, subset, &models, tau);
-    let mut in_subset = vec![false; points.len()];
-    subset.indices.iter().for_each(|&i| in_subset[i] = true);
+    let in_subset = subset.membership(points.len());
     (0..points.len())
         .into_par_iter()
         .map_init(

@@ -40,8 +40,7 @@ pub(crate) fn neighbour_vote(points: &Correspondences, subset: ClusteredSubset) 
         .zip(subset.labels)
         .map(|(&i, &l)| (joint(points, i), class(l)))
         .collect();
-    let mut in_subset = vec![false; points.len()];
-    subset.indices.iter().for_each(|&i| in_subset[i] = true);
+    let in_subset = subset.membership(points.len());
     (0..points.len())
         .into_par_iter()
         .map(|i| {

@@ -222,8 +222,8 @@ pub struct Params {
     /// ([`crate::refitted_cluster_models`]); `neighbours` (the label most
     /// of its [`crate::EXTENSION_NEIGHBOURS`] nearest clustered matches in
     /// (x₁, y₁, x₂, y₂) have, then an outlier unless that cluster's
-    /// best-supported hypothesis explains it within `thr_px`). Default `preference-explained` (results/README.md, "Real-sized
-    /// scenes").
+    /// best-supported hypothesis explains it within `thr_px`). Default
+    /// `preference-explained` (results/README.md, "Real-sized scenes").
     pub subset_extension: SubsetExtension,
     /// After the final assignment and the subset's extension: `none` (the
     /// outliers stay, the thesis) or `refit` (each cluster's F refitted by

@@ -61,6 +61,15 @@ pub struct ClusteredSubset<'a> {
     pub clusters: usize,
 }
 
+impl ClusteredSubset<'_> {
+    /// Whether each of `n` matches is in the subset (its indices `< n`).
+    pub(crate) fn membership(&self, n: usize) -> Vec<bool> {
+        let mut in_subset = vec![false; n];
+        self.indices.iter().for_each(|&i| in_subset[i] = true);
+        in_subset
+    }
+}
+
 /// The labels of all `points` (principal-point centred) from those of the
 /// clustered `subset`, given the `models` that entered the preferences,
 /// their `inliers` among the subset's matches (`r ≤ tau`, in the order of
