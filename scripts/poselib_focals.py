@@ -16,7 +16,7 @@ and keeps the answer with the fewest iterations, ties by the smallest
 Writes scene, hypothesis, f1, f2, iterations, kruppa_residual and F00..F22
 (copied, so that `focal_solver = "external"` can check that the file belongs
 to its hypotheses). kruppa_residual = max |g_i(x)| / max |g_i(p)| at the
-answer x (method.md step 4): above 1e-6 the answer is no solution of the
+answer x (docs/method.md step 4): above 1e-6 the answer is no solution of the
 Kruppa equations (the fixture's `infeasible`); 1 for the prior itself.
 
 `summary` prints what the answers of FOCALS.csv are: the prior (f1 = f2 =
@@ -72,7 +72,7 @@ def summary(f_prior, tau_range, paths):
 
 
 def kruppa(fundamental, x):
-    """(g1, g2) of method.md step 4 at x = (f1, u1, v1, f2, u2, v2), F scaled to unit norm."""
+    """(g1, g2) of docs/method.md step 4 at x = (f1, u1, v1, f2, u2, v2), F scaled to unit norm."""
     u, s, vt = np.linalg.svd(fundamental / np.linalg.norm(fundamental))
     v = vt.T
 

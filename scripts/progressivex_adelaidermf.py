@@ -46,7 +46,7 @@ Build/install (Debian 12, Python 3.11):
   export PYTHONPATH=/tmp/ppx/build   # pyprogressivex.cpython-*.so lives here
 
 Then, for example:
-  cargo build --release -p bench
+  cargo build --release -p sctl
   python3 scripts/progressivex_adelaidermf.py datasets/adelaidermf/F \
       /tmp/progressivex target/release/sctl
 """

@@ -1,6 +1,6 @@
 //! `sctl.focals_from_fundamental` (the robust Kocur–Kyselica–Kukelova solver
 //! with the reference's multi-start rule) and `sctl.bougnoux`, over one F
-//! or a stack (method.md step 4).
+//! or a stack (docs/method.md step 4).
 
 use crate::convert::{array1, matrices, pair, points_array, to_json, value_error};
 use crate::params::from_object;
@@ -94,7 +94,7 @@ fn answer(result: Result<FocalEstimate, FocalFailure>) -> (FocalEstimate, usize,
 /// Focal lengths of both views from a fundamental matrix: the robust
 /// iterative solver of Kocur, Kyselica and Kukelova (CVPR 2024), run once
 /// per weight set, the answer with the fewest iterations kept (ties: the
-/// smallest |f1 - f2|, then the earlier set), as in method.md step 4.
+/// smallest |f1 - f2|, then the earlier set), as in docs/method.md step 4.
 ///
 /// Parameters
 /// ----------

@@ -4,7 +4,7 @@
 //! - [`segment::segment`]: Algorithm 1 (semi-calibrated T-Linkage) through
 //!   `segmentation::segment`, with every `Params` key as a keyword;
 //! - [`focal::focals_from_fundamental`], [`focal::bougnoux`]: the focal
-//!   solvers of method.md step 4 (crate `focal`);
+//!   solvers of docs/method.md step 4 (crate `focal`);
 //! - [`tools::t_linkage`], [`tools::sampson_distances`], [`tools::metrics`]:
 //!   crates `clustering`, `geometry`, `metrics`;
 //! - [`datasets::load_adelaidermf`], [`datasets::load_hopef`]: crate

@@ -15,7 +15,7 @@ fn count(value: i64, name: &str) -> PyResult<usize> {
 }
 
 /// T-Linkage (thesis Eqs. 39-40) of a continuous preference matrix, then the
-/// size filter (method.md steps 8-9).
+/// size filter (docs/method.md steps 8-9).
 ///
 /// Parameters
 /// ----------
@@ -90,7 +90,7 @@ pub fn sampson_distances<'py>(
     Ok(array1(py, out))
 }
 
-/// The segmentation metrics of method.md "Metrics" for one scene.
+/// The segmentation metrics of docs/method.md "Metrics" for one scene.
 ///
 /// Parameters
 /// ----------

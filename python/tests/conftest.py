@@ -28,7 +28,7 @@ def cli():
     if binary is None or not binary.is_file():
         pytest.fail(
             "the sctl program is needed to compare answers with: build it with "
-            "`cargo build --release -p bench` or set SCTL_BIN"
+            "`cargo build --release -p sctl` or set SCTL_BIN"
         )
 
     def run(*args):

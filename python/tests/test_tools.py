@@ -93,7 +93,7 @@ def test_metrics_reject_bad_labels():
 
 def test_metrics_equal_scikit_learn_and_the_definitions():
     """shared/fixtures/stats/clustering.json: scikit-learn's ARI and NMI and
-    method.md's ME, PUR and FNR on label vectors."""
+    docs/method.md's ME, PUR and FNR on label vectors."""
     cases = json.loads(shared_path("fixtures", "stats", "clustering.json").read_text())
     for case in cases:
         m = sctl.metrics(np.array(case["pred"]), np.array(case["gt"]))

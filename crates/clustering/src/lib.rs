@@ -1,5 +1,5 @@
 #![warn(missing_docs)]
-//! The clustering phase of Algorithm 1 (method.md steps 7–9; thesis Sections
+//! The clustering phase of Algorithm 1 (docs/method.md steps 7–9; thesis Sections
 //! 5.2.4 and 6.3): preference matrices and T-Linkage / J-Linkage.
 //!
 //! The crate knows nothing of geometry: its input is an N × M matrix of
@@ -65,7 +65,7 @@ pub use tlinkage::t_linkage;
 
 use serde::{Deserialize, Serialize};
 
-/// Default of [`ClusteringParams::min_cluster_size`] (method.md step 9).
+/// Default of [`ClusteringParams::min_cluster_size`] (docs/method.md step 9).
 pub const DEFAULT_MIN_CLUSTER_SIZE: usize = 8;
 
 /// Parameters of the clustering phase.
@@ -100,7 +100,7 @@ pub struct ClusteringParams {
     /// Clusters with fewer points than this get label −1 (default 8); the
     /// floor of every [`SizeRule`].
     pub min_cluster_size: usize,
-    /// Which clusters are kept (method.md step 9; default
+    /// Which clusters are kept (docs/method.md step 9; default
     /// [`SizeRule::MinSize`], `min_cluster_size` alone).
     pub size_rule: SizeRule,
     /// The memory the phase may need, in bytes (default `None`: no bound);
@@ -225,13 +225,13 @@ impl ClusteringParams {
 }
 
 /// T-Linkage of continuous preferences, J-Linkage of binary ones, then the
-/// size filter (method.md steps 8–9).
+/// size filter (docs/method.md steps 8–9).
 pub fn cluster(preferences: &Preferences, min_cluster_size: usize) -> Clustering {
     cluster_with_rule(preferences, SizeRule::MinSize, min_cluster_size)
 }
 
 /// T-Linkage of continuous preferences, J-Linkage of binary ones, then the
-/// clusters of `rule` are kept (method.md steps 8–9; `min_cluster_size` is
+/// clusters of `rule` are kept (docs/method.md steps 8–9; `min_cluster_size` is
 /// the rule's floor).
 pub fn cluster_with_rule(
     preferences: &Preferences,

@@ -1,4 +1,4 @@
-//! The agglomeration shared by T-Linkage and J-Linkage (method.md steps 8–9):
+//! The agglomeration shared by T-Linkage and J-Linkage (docs/method.md steps 8–9):
 //! a min-heap of pair distances with lazy deletion, and the final labelling.
 
 use rayon::prelude::*;
@@ -24,7 +24,7 @@ pub struct Merge {
     pub distance: f64,
 }
 
-/// Result of a clustering (method.md steps 8–9).
+/// Result of a clustering (docs/method.md steps 8–9).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Clustering {
     /// One label per point: `0..clusters_after_filter` for the clusters kept
@@ -80,7 +80,7 @@ pub(crate) trait AgglomerationState: Sync {
 /// Rows of the initial pair distances handled by one parallel task.
 pub(crate) const ROWS_PER_TASK: usize = 8;
 
-/// Agglomerative clustering with a lazy-deletion min-heap (method.md step 8,
+/// Agglomerative clustering with a lazy-deletion min-heap (docs/method.md step 8,
 /// thesis Section 6.3); returns the merges (step 9 is [`labels_from_merges`]).
 ///
 /// 1. Every pair `i < j` of points with `d < 1` enters the heap; entries are
@@ -228,7 +228,7 @@ fn refill<S: AgglomerationState>(
     heap.replace_run(owner, version[owner], entries.into_iter().chain(recomputed));
 }
 
-/// Labels from the merge sequence (method.md step 9): each point belongs to
+/// Labels from the merge sequence (docs/method.md step 9): each point belongs to
 /// the surviving cluster its merges lead to; clusters are numbered in
 /// ascending order of surviving id; clusters smaller than the minimum size
 /// of `rule` ([`SizeRule::min_size`], at least `min_cluster_size`) get −1.

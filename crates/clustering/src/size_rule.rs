@@ -1,9 +1,9 @@
-//! Rejection of spurious clusters (method.md step 9): which clusters of the
+//! Rejection of spurious clusters (docs/method.md step 9): which clusters of the
 //! agglomeration are kept as motions, the others becoming outliers.
 
 use serde::{Deserialize, Serialize};
 
-/// The rule that decides which clusters are kept (method.md step 9). Every
+/// The rule that decides which clusters are kept (docs/method.md step 9). Every
 /// rule yields a minimum size `s_min`: clusters with at least `s_min` points
 /// are kept, the others are labelled −1. `min_cluster_size` is a floor of
 /// `s_min` under every rule.
@@ -24,7 +24,7 @@ use serde::{Deserialize, Serialize};
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum SizeRule {
-    /// `s_min = min_cluster_size` (the rule of method.md step 9; default).
+    /// `s_min = min_cluster_size` (the rule of docs/method.md step 9; default).
     /// Serialised as `"min-size"`.
     #[default]
     MinSize,

@@ -1,4 +1,4 @@
-//! The rules that keep clusters (method.md step 9): the size-gap cut of
+//! The rules that keep clusters (docs/method.md step 9): the size-gap cut of
 //! T-Linkage on hand-made size lists, the relative minimum, the default
 //! being the former behaviour bit for bit; and the memory bound.
 

@@ -1,5 +1,5 @@
 //! AdelaideRMF (Wong, Chin, Yu, Suter, ICCV 2011): the 19 two-view
-//! fundamental-matrix scenes, one MATLAB v5 `.mat` file each (method.md,
+//! fundamental-matrix scenes, one MATLAB v5 `.mat` file each (docs/method.md,
 //! "Datasets").
 //!
 //! Variables used: `data` (6 × N, rows x1, y1, 1, x2, y2, 1), `label`

@@ -1,5 +1,5 @@
 //! HOPE-F (Kluger & Rosenhahn, AAAI 2024): 4 × 1000 rendered scenes of 1–4
-//! independently moving objects (method.md, "Datasets").
+//! independently moving objects (docs/method.md, "Datasets").
 //!
 //! On-disk layout, under the dataset root:
 //!
@@ -17,7 +17,7 @@
 //!   coordinate (1 in HOPE-F, so the division is exact and the result is the
 //!   first two columns). A third coordinate of 0 or non-finite is an error.
 //!   N × 2 arrays are accepted as plain pixels.
-//! * Principal point `(K[0,2], K[1,2])`, true focal `K[0,0]` (method.md,
+//! * Principal point `(K[0,2], K[1,2])`, true focal `K[0,0]` (docs/method.md,
 //!   "Input").
 //! * Image size: that of `render0.png` when present; else the optional
 //!   `image_size` array (W, H) of `camera_parameters.npz` (written by

@@ -1,6 +1,6 @@
 //! Scenes for two-view motion segmentation: the [`Scene`] type every stage of
-//! the pipeline consumes (method.md, "Input"), loaders for the datasets the
-//! thesis evaluates (method.md, "Datasets") and a synthetic generator.
+//! the pipeline consumes (docs/method.md, "Input"), loaders for the datasets the
+//! thesis evaluates (docs/method.md, "Datasets") and a synthetic generator.
 //!
 //! * [`adelaidermf`]: the 19 AdelaideRMF fundamental-matrix scenes (`.mat`).
 //! * [`hopef`]: HOPE-F scene folders (`.npz`), with split and category

@@ -1,4 +1,4 @@
-//! [`Scene`]: the one input type of the pipeline (method.md, "Input").
+//! [`Scene`]: the one input type of the pipeline (docs/method.md, "Input").
 
 use crate::DatasetError;
 use nalgebra::Matrix3;
@@ -28,7 +28,7 @@ pub struct Scene {
     /// Image size `(W, H)` in pixels.
     pub image_size: (u32, u32),
     /// Principal point in pixels: HOPE-F `(K[0,2], K[1,2])`; AdelaideRMF and
-    /// user data `((W-1)/2, (H-1)/2)` (method.md, "Input").
+    /// user data `((W-1)/2, (H-1)/2)` (docs/method.md, "Input").
     pub principal_point: [f64; 2],
     /// Ground-truth focal length in pixels, when known (HOPE-F `K[0,0]`).
     pub true_focal: Option<f64>,
@@ -40,7 +40,7 @@ pub struct Scene {
 }
 
 /// The principal point assumed when no calibration is known: the image
-/// centre `((W-1)/2, (H-1)/2)` in pixel-centre coordinates (method.md,
+/// centre `((W-1)/2, (H-1)/2)` in pixel-centre coordinates (docs/method.md,
 /// "Input").
 ///
 /// ```
@@ -64,7 +64,7 @@ impl Scene {
         self.points1.is_empty()
     }
 
-    /// The focal prior `f_prior = max(W, H)` in pixels (method.md, "Input";
+    /// The focal prior `f_prior = max(W, H)` in pixels (docs/method.md, "Input";
     /// the prior of the focal solvers in Algorithm 1, step 4).
     ///
     /// ```

@@ -9,7 +9,7 @@
 //!   (`scene.csv` → `scene.toml`), see [`Sidecar`].
 //!
 //! The principal point is the image centre ((W-1)/2, (H-1)/2) unless the
-//! sidecar gives one (method.md, "Input").
+//! sidecar gives one (docs/method.md, "Input").
 
 use crate::{centre_principal_point, DatasetError, Scene};
 use serde::Deserialize;

@@ -1,5 +1,5 @@
 //! The real solutions of two bivariate quartics `P = Q = 0` from the roots
-//! of their resultant, and the one a robust focal step takes (method.md
+//! of their resultant, and the one a robust focal step takes (docs/method.md
 //! step 4: the smallest `|l1| + |l2|`): the common root t1 from the null
 //! vector of the Bezout matrix at each near-real root t2 (or the real roots
 //! of the first quartic), Newton's polish on the 2x2 system, and the

@@ -1,6 +1,6 @@
 //! Bivariate polynomials in `(t1, t2)` of total degree at most 4, the
 //! form the two Kruppa constraints take on a step's plane of the robust
-//! focal solver (method.md step 4): products of linear and quadratic forms,
+//! focal solver (docs/method.md step 4): products of linear and quadratic forms,
 //! linear combinations, evaluation with the gradient and a magnitude bound.
 //!
 //! Everything here works on fixed-size arrays: no allocation per call.

@@ -1,4 +1,4 @@
-//! Bougnoux's closed-form focal lengths (method.md step 4).
+//! Bougnoux's closed-form focal lengths (docs/method.md step 4).
 
 use nalgebra::{Matrix3, Vector3};
 

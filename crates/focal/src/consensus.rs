@@ -1,5 +1,5 @@
 //! The per-hypothesis local test (Eq. 36) and the scene-level KDE focal
-//! consensus with its band filter (Eq. 37), method.md steps 5 and 6.
+//! consensus with its band filter (Eq. 37), docs/method.md steps 5 and 6.
 
 use serde::{Deserialize, Serialize};
 
@@ -40,7 +40,7 @@ pub fn band_indices(f_avgs: &[f64], f_peak: f64, tau_range: f64) -> Vec<usize> {
         .collect()
 }
 
-/// Parameters of [`focal_consensus`] (method.md step 6).
+/// Parameters of [`focal_consensus`] (docs/method.md step 6).
 ///
 /// Defaults (serde and [`Default`]): 512 grid points between the 1st and
 /// 99th percentiles, peaks with prominence `>= 0.05 * max density` and at
@@ -95,7 +95,7 @@ pub struct FocalConsensus {
     pub n: usize,
 }
 
-/// The scene-level focal consensus of method.md step 6 (Eq. 37) on the
+/// The scene-level focal consensus of docs/method.md step 6 (Eq. 37) on the
 /// `f_avg` values that passed the local test:
 ///
 /// - Gaussian KDE `p(f) = 1/(n h) sum_i phi((f - f_i) / h)` with

@@ -3,7 +3,7 @@
 /// Why a focal-length solver gave no answer.
 ///
 /// Bougnoux's closed form fails with [`NoRealFocal`](Self::NoRealFocal) or
-/// [`Singular`](Self::Singular); the robust iterative solver (method.md
+/// [`Singular`](Self::Singular); the robust iterative solver (docs/method.md
 /// step 4) with [`NoRealSolution`](Self::NoRealSolution),
 /// [`NonFinite`](Self::NonFinite) or [`NoConvergence`](Self::NoConvergence),
 /// each carrying the iteration index at which it stopped (the count that

@@ -1,4 +1,4 @@
-//! The two Kruppa constraints in the SVD form of F (method.md step 4): their
+//! The two Kruppa constraints in the SVD form of F (docs/method.md step 4): their
 //! values, gradients and expansion along a step's plane, and the public
 //! residuals that measure an estimate's feasibility.
 
@@ -238,7 +238,7 @@ fn form_with_grad(a: &Vector3<f64>, b: &Vector3<f64>, f: f64, m: &Vector3<f64>) 
     )
 }
 
-/// The two Kruppa constraints `(g1, g2)` of method.md step 4 (Hartley &
+/// The two Kruppa constraints `(g1, g2)` of docs/method.md step 4 (Hartley &
 /// Zisserman's ratio form in the SVD of F) at the cameras
 /// `(f1, pp1)`, `(f2, pp2)`:
 ///

@@ -1,7 +1,7 @@
 #![warn(missing_docs)]
 //! Focal lengths of two views from their fundamental matrix, and the
 //! scene-level focal consensus that filters fundamental-matrix hypotheses
-//! (method.md steps 4–6).
+//! (docs/method.md steps 4–6).
 //!
 //! - [`bougnoux`]: Bougnoux's closed form (Bougnoux 1998), which can give
 //!   `f^2 < 0` ([`FocalFailure::NoRealFocal`]).

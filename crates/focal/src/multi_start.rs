@@ -1,5 +1,5 @@
 //! The reference implementation's multi-start rule over weight sets
-//! (method.md step 4): fewest iterations, ties by the smallest `|f1 - f2|`.
+//! (docs/method.md step 4): fewest iterations, ties by the smallest `|f1 - f2|`.
 
 use nalgebra::Matrix3;
 
@@ -9,7 +9,7 @@ use crate::params::{FocalEstimate, FocalWeights, OnFailure, RobustFocalParams};
 use crate::robust::{apply_on_failure, Solve};
 use crate::simd::Simd;
 
-/// The reference's multi-start rule (method.md step 4): run
+/// The reference's multi-start rule (docs/method.md step 4): run
 /// [`robust_focals`] with each weight set and keep the answer with the
 /// fewest iterations, ties broken by the smallest `|f1 - f2|`, remaining
 /// ties by the earlier weight set.

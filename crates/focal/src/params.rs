@@ -1,4 +1,4 @@
-//! Parameters and answers of the robust focal solver (method.md step 4):
+//! Parameters and answers of the robust focal solver (docs/method.md step 4):
 //! the prior weights, the reference's weight sets, the failure policy and
 //! the estimate.
 
@@ -9,7 +9,7 @@ use crate::error::FocalFailure;
 /// Weights of the deviation from the priors, `(w_f1, w_pp1, w_f2, w_pp2)`:
 /// the objective is `w_f1 (f1 - f_prior)^2 + w_pp1 |pp1|^2 + w_f2 (f2 -
 /// f_prior)^2 + w_pp2 |pp2|^2`, so each enters the step directions as `1/w`
-/// (method.md step 4).
+/// (docs/method.md step 4).
 ///
 /// Defaults (serde and [`Default`]): `(5e-4, 1, 5e-4, 1)`, PoseLib's.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -63,7 +63,7 @@ impl Default for FocalWeights {
 }
 
 /// The weight sets the reference implementation tries on AdelaideRMF
-/// (method.md step 4, with `max_iters` 100).
+/// (docs/method.md step 4, with `max_iters` 100).
 pub const ADELAIDE_WEIGHT_SETS: [FocalWeights; 4] = [
     FocalWeights::new(1e-3, 1.0, 1e-3, 1.0),
     FocalWeights::new(5e-4, 1.0, 5e-4, 1.0),
@@ -74,7 +74,7 @@ pub const ADELAIDE_WEIGHT_SETS: [FocalWeights; 4] = [
 /// The reference's `max_iters` with [`ADELAIDE_WEIGHT_SETS`].
 pub const ADELAIDE_MAX_ITERS: usize = 100;
 
-/// The weight sets the reference implementation tries on HOPE-F (method.md
+/// The weight sets the reference implementation tries on HOPE-F (docs/method.md
 /// step 4, with `max_iters` 120): the AdelaideRMF four plus
 /// `(1e-3, 2, 1e-3, 2)` and `(1e-4, 3, 1e-4, 3)`.
 pub const HOPEF_WEIGHT_SETS: [FocalWeights; 6] = [
@@ -93,7 +93,7 @@ pub const HOPEF_MAX_ITERS: usize = 120;
 ///
 /// Defaults (serde and [`Default`]): `f_prior` 1000 px, weights
 /// `(5e-4, 1, 5e-4, 1)`, `max_iters` 50. In the pipeline `f_prior` is
-/// `max(W, H)` of the images (method.md, Input).
+/// `max(W, H)` of the images (docs/method.md, Input).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct RobustFocalParams {
@@ -115,7 +115,7 @@ impl Default for RobustFocalParams {
     }
 }
 
-/// What to do when the robust solver fails (method.md step 4).
+/// What to do when the robust solver fails (docs/method.md step 4).
 ///
 /// Serialised in lowercase: `"report"` or `"prior"`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]

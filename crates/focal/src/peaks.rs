@@ -1,5 +1,5 @@
 //! `scipy.signal.find_peaks` with `prominence` and `distance`, as the KDE
-//! focal consensus of Eq. 37 (method.md step 6) uses it.
+//! focal consensus of Eq. 37 (docs/method.md step 6) uses it.
 
 use serde::{Deserialize, Serialize};
 

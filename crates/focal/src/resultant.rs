@@ -1,6 +1,6 @@
 //! The resultant of two bivariate quartics with respect to t1, a
 //! polynomial of degree <= 16 in t2 (the hidden-variable elimination of the
-//! robust focal solver's step, method.md step 4), interpolated at the 32nd
+//! robust focal solver's step, docs/method.md step 4), interpolated at the 32nd
 //! roots of unity from complex 4x4 Bezout determinants evaluated several
 //! nodes at a time.
 

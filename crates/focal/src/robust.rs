@@ -1,5 +1,5 @@
 //! The robust iterative focal solver of Kocur, Kyselica and Kukelova
-//! (CVPR 2024), as method.md step 4 specifies it: the iteration from the
+//! (CVPR 2024), as docs/method.md step 4 specifies it: the iteration from the
 //! prior, one step's plane and quartics, the stopping rule and the failure
 //! policy.
 
@@ -14,7 +14,7 @@ use crate::KRUPPA_TOLERANCE;
 
 /// Focal lengths and principal points of both images from F (principal
 /// points at the origin, `x2^T F x1 = 0`) by the robust iterative solver of
-/// Kocur, Kyselica and Kukelova (CVPR 2024), method.md step 4.
+/// Kocur, Kyselica and Kukelova (CVPR 2024), docs/method.md step 4.
 ///
 /// Unknowns `x = (f1, u1, v1, f2, u2, v2)`, prior
 /// `p = (f_prior, 0, 0, f_prior, 0, 0)`, objective

@@ -1,5 +1,5 @@
 //! Agreement with PoseLib on ../shared/fixtures/focal/poselib_focals.csv
-//! (method.md step 4): Bougnoux's closed form and the robust iterative
+//! (docs/method.md step 4): Bougnoux's closed form and the robust iterative
 //! solver.
 
 mod support;

@@ -1,6 +1,6 @@
 //! Nonlinear polish of a fundamental matrix on a few matches: the
 //! reference code's PoseLib `refine_fundamental` call before IRLS (step 3 of
-//! Algorithm 1; method.md: "the reference first polishes F on the sample").
+//! Algorithm 1; docs/method.md: "the reference first polishes F on the sample").
 //!
 //! It minimises the robust Sampson cost (square root of thesis Eq. 23 as the
 //! residual `r_k = e_k / ‖∇e_k‖`, Cauchy loss)

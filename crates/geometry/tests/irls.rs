@@ -1,5 +1,5 @@
 //! IRLS-Tukey refinement: robustness on contaminated scenes, agreement with a
-//! literal transcription of method.md step 3, and errors.
+//! literal transcription of docs/method.md step 3, and errors.
 
 mod common;
 
@@ -86,7 +86,7 @@ fn irls_from_a_given_initial_f_matches_irls_from_the_sample() {
     assert!(frob_distance(&a.f, &b.f) < 1e-10);
 }
 
-/// method.md step 3 transcribed literally with the public API, allocating
+/// docs/method.md step 3 transcribed literally with the public API, allocating
 /// freely: sorted medians, `Correspondences::subset`, `eight_point_weighted`
 /// (or `eight_point_weighted_plain`); with the reference code's variants as
 /// the README states them.

@@ -6,7 +6,7 @@ use crate::labels::{sorted_ids, validate};
 use crate::MetricsError;
 
 /// Adjusted Rand index over all points, −1 and 0 taken as ordinary classes
-/// (method.md "Metrics", ARI; Hubert–Arabie adjustment as scikit-learn's
+/// (docs/method.md "Metrics", ARI; Hubert–Arabie adjustment as scikit-learn's
 /// `adjusted_rand_score`).
 ///
 /// With the pair-confusion counts `tp` (pairs together in both labellings),
@@ -29,7 +29,7 @@ pub fn adjusted_rand_index(pred: &[i32], gt: &[i32]) -> Result<f64, MetricsError
 }
 
 /// Normalised mutual information over all points, −1 and 0 taken as ordinary
-/// classes, with arithmetic-mean normalisation (method.md "Metrics", NMI;
+/// classes, with arithmetic-mean normalisation (docs/method.md "Metrics", NMI;
 /// as scikit-learn's `normalized_mutual_info_score`).
 ///
 /// `NMI = I(U; V) / ((H(U) + H(V)) / 2)` with natural logarithms. As in

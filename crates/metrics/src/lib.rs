@@ -1,5 +1,5 @@
 #![warn(missing_docs)]
-//! Per-scene evaluation metrics of a segmentation (method.md, "Metrics").
+//! Per-scene evaluation metrics of a segmentation (docs/method.md, "Metrics").
 //!
 //! Label conventions follow the evaluation protocol:
 //! - predicted labels: [`PREDICTED_OUTLIER`] (−1) marks a point rejected as an
@@ -76,7 +76,7 @@ pub enum MetricsError {
     },
 }
 
-/// Every label-based metric of method.md "Metrics" for one scene, as
+/// Every label-based metric of docs/method.md "Metrics" for one scene, as
 /// fractions in [0, 1] (ARI may be negative).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct ClusteringMetrics {
@@ -99,7 +99,7 @@ pub struct ClusteringMetrics {
 
 impl ClusteringMetrics {
     /// Computes ME, ME over all points, ACC = 1 − ME, FNR, PUR, ARI and NMI of `pred` against
-    /// `gt` (method.md "Metrics").
+    /// `gt` (docs/method.md "Metrics").
     ///
     /// # Errors
     /// [`MetricsError`] when the lengths differ or a label is out of range.

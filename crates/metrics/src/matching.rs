@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 use crate::labels::{agreement_counts, optimal_assignment, sorted_ids, validate};
 use crate::{MetricsError, GROUND_TRUTH_OUTLIER, PREDICTED_OUTLIER};
 
-/// Misclassification error (method.md "Metrics", ME).
+/// Misclassification error (docs/method.md "Metrics", ME).
 ///
 /// Over the points whose ground truth is not 0 (count `N_in`), predicted
 /// clusters (ids ≠ −1) are matched one-to-one to ground-truth motions by the
@@ -59,7 +59,7 @@ pub fn misclassification_error_all(pred: &[i32], gt: &[i32]) -> Result<f64, Metr
     checked(pred, gt, me_all_unchecked)
 }
 
-/// False-negative rate (method.md "Metrics", FNR).
+/// False-negative rate (docs/method.md "Metrics", FNR).
 ///
 /// Predicted clusters are matched one-to-one to ground-truth ids (0
 /// included) by the Hungarian algorithm maximising agreement over the points
@@ -82,7 +82,7 @@ pub fn false_negative_rate(pred: &[i32], gt: &[i32]) -> Result<f64, MetricsError
     checked(pred, gt, fnr_unchecked)
 }
 
-/// Purity (method.md "Metrics", PUR).
+/// Purity (docs/method.md "Metrics", PUR).
 ///
 /// Over the points whose prediction is `>= 0`: the sum over predicted
 /// clusters of the largest ground-truth class count in the cluster (class 0

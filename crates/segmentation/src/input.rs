@@ -3,7 +3,7 @@
 use crate::SegmentationError;
 
 /// Point matches between two images of one camera, in pixels, with the
-/// image size, the principal point and the focal prior (method.md "Input").
+/// image size, the principal point and the focal prior (docs/method.md "Input").
 ///
 /// ```
 /// let p1 = [[10.0, 20.0]; 8];
@@ -29,7 +29,7 @@ pub struct Matches<'a> {
 }
 
 /// The principal point assumed when no calibration is known: the image
-/// centre `((W − 1)/2, (H − 1)/2)` in pixel-centre coordinates (method.md,
+/// centre `((W − 1)/2, (H − 1)/2)` in pixel-centre coordinates (docs/method.md,
 /// "Input").
 pub fn image_centre(image_size: (u32, u32)) -> [f64; 2] {
     [

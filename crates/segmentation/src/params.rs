@@ -1,7 +1,7 @@
 //! The parameters of Algorithm 1 ([`Params`]) and the switches between the
 //! thesis text and its reference implementation.
 //!
-//! Every parameter of method.md's "Parameters" table is a field of
+//! Every parameter of docs/method.md's "Parameters" table is a field of
 //! [`Params`]; its default is the thesis's Table 1 value (or the text's
 //! choice where Table 1 has none). With the `serde` feature the struct reads
 //! from and writes to TOML/JSON under the same names, unknown keys refused.
@@ -18,7 +18,7 @@ pub use crate::variants::{
 };
 pub use crate::weight_sets::{WeightPreset, WeightSets};
 
-/// Every parameter of Algorithm 1 (method.md "Parameters" and the switches
+/// Every parameter of Algorithm 1 (docs/method.md "Parameters" and the switches
 /// between the thesis text and the reference code).
 ///
 /// The defaults are the best configuration measured (results/README.md,

@@ -1,4 +1,4 @@
-//! Algorithm 1 end to end (method.md steps 1–9), and steps 5–9 on
+//! Algorithm 1 end to end (docs/method.md steps 1–9), and steps 5–9 on
 //! hypotheses and focals computed beforehand.
 
 use crate::assignment::{cluster_refit_irls, members};
@@ -18,7 +18,7 @@ use std::borrow::Cow;
 use std::collections::HashSet;
 use std::time::Instant;
 
-/// Segments `matches` by Algorithm 1 (method.md steps 1–9) with `params`.
+/// Segments `matches` by Algorithm 1 (docs/method.md steps 1–9) with `params`.
 ///
 /// Errors only on input that admits no hypothesis at all (invalid
 /// parameters or camera fields, fewer points than `mss_size`, non-finite

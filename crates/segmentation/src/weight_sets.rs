@@ -1,4 +1,4 @@
-//! The multi-start weight sets of the robust focal solver (method.md step
+//! The multi-start weight sets of the robust focal solver (docs/method.md step
 //! 4): a preset name or an explicit list, read and written by serde as
 //! `"adelaidermf"`, `"hopef"` or a list of `[w_f1, w_pp1, w_f2, w_pp2]`.
 
@@ -19,7 +19,7 @@ pub enum WeightPreset {
 }
 
 /// Multi-start weight sets `(w_f1, w_pp1, w_f2, w_pp2)` of the robust focal
-/// solver (method.md step 4): a preset name or an explicit list. Serialised
+/// solver (docs/method.md step 4): a preset name or an explicit list. Serialised
 /// as `"adelaidermf"`, `"hopef"` or a list of `[w_f1, w_pp1, w_f2, w_pp2]`.
 #[derive(Debug, Clone, PartialEq)]
 pub enum WeightSets {

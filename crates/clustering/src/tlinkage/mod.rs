@@ -1,4 +1,4 @@
-//! T-Linkage (method.md step 8): Tanimoto distance (Eq. 39) between
+//! T-Linkage (docs/method.md step 8): Tanimoto distance (Eq. 39) between
 //! continuous preference vectors, merged by element-wise minimum (Eq. 40).
 
 mod kernels;
@@ -11,7 +11,7 @@ use kernels::{avx2_available, bound_margin, quantise, Level, LANES, LEVELS};
 use std::borrow::Cow;
 use std::ops::Range;
 
-/// T-Linkage clustering of a continuous preference matrix (method.md steps
+/// T-Linkage clustering of a continuous preference matrix (docs/method.md steps
 /// 8–9, Eq. 39–40), with the lazy-deletion min-heap of Section 6.3.
 ///
 /// Pairs are merged closest first, ties broken by the smaller `(i, j)`; the
@@ -49,7 +49,7 @@ pub fn t_linkage(preferences: &PreferenceMatrix, min_cluster_size: usize) -> Clu
     )
 }
 
-/// The merges of T-Linkage (method.md step 8), before any size filter.
+/// The merges of T-Linkage (docs/method.md step 8), before any size filter.
 pub(crate) fn merge_sequence(preferences: &PreferenceMatrix) -> Vec<Merge> {
     agglomerate(ContinuousState::new(preferences), RUN_CAPACITY)
 }

@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use focal::FocalWeights;
 use nalgebra::Matrix3;
 
-/// One row of `poselib_focals.csv`: an F with PoseLib's answers (method.md
+/// One row of `poselib_focals.csv`: an F with PoseLib's answers (docs/method.md
 /// step 4). Empty numeric cells read as NaN.
 pub struct Row {
     /// The row's id.
@@ -30,7 +30,7 @@ pub struct Row {
     pub iter_f: [f64; 2],
     /// PoseLib's iteration count.
     pub iterations: usize,
-    /// `feasible`, `infeasible`, `prior` or `nan` (method.md step 4).
+    /// `feasible`, `infeasible`, `prior` or `nan` (docs/method.md step 4).
     pub status: String,
 }
 

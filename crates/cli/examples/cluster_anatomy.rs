@@ -1,0 +1,263 @@
+//! What the clusters of a profile are made of on synthetic validation
+//! scenes: for each predicted cluster its majority ground-truth label, so
+//! that an over-count of the motions splits into fragments of a motion
+//! (a second cluster whose majority is a motion another cluster already
+//! holds) and clusters of gross outliers, and the thesis-protocol errors
+//! (ground-truth inliers mislabelled) into inliers called outliers, inliers
+//! in a fragment and inliers in another motion's cluster. Scenes and
+//! sampling seeds are those of `sctl run` on the same preset and indices.
+//! `--config` takes the parameters of a file's `[pipeline]` table (its
+//! `profile` and the keys it gives), `--profile` those of a profile.
+//!
+//! ```text
+//! cargo run --release -p sctl --example cluster_anatomy -- \
+//!     [--preset adelaide-like] [--from 800] [--to 819] [--profile fast] \
+//!     [--config FILE.toml] [--num-samples M] [--seeds 12345,23456,34567]
+//! ```
+
+use sctl::config::PipelineConfig;
+use sctl::pipeline::{matches, scene_seed};
+use datasets::synthetic::Preset;
+use datasets::Scene;
+use geometry::{sampson_distances_squared, Correspondences};
+use segmentation::{segment, subset_indices, Params, Profile};
+use std::process::ExitCode;
+
+struct Options {
+    preset: Preset,
+    from: u32,
+    to: u32,
+    params: Params,
+    seeds: Vec<u64>,
+}
+
+fn parse(mut args: impl Iterator<Item = String>) -> Result<Options, String> {
+    let mut o = Options {
+        preset: Preset::AdelaideLike,
+        from: 800,
+        to: 819,
+        params: Params::fast(),
+        seeds: vec![12345, 23456, 34567],
+    };
+    let mut num_samples = None;
+    while let Some(flag) = args.next() {
+        let value = args.next().ok_or(format!("{flag} needs a value"))?;
+        let number = |v: &str| v.parse::<u64>().map_err(|e| format!("{flag} {v}: {e}"));
+        match flag.as_str() {
+            "--preset" => {
+                o.preset = Preset::from_name(&value).ok_or(format!("unknown preset {value}"))?
+            }
+            "--from" => o.from = number(&value)? as u32,
+            "--to" => o.to = number(&value)? as u32,
+            "--profile" => {
+                o.params = Profile::from_name(&value)
+                    .ok_or(format!("unknown profile {value}"))?
+                    .params()
+            }
+            "--config" => {
+                o.params = PipelineConfig::load(std::path::Path::new(&value))
+                    .map_err(|e| e.to_string())?
+                    .params()
+            }
+            "--num-samples" => num_samples = Some(number(&value)? as usize),
+            "--seeds" => o.seeds = value.split(',').map(number).collect::<Result<_, _>>()?,
+            other => return Err(format!("unknown option {other}")),
+        }
+    }
+    if let Some(m) = num_samples {
+        o.params.num_samples = m;
+    }
+    Ok(o)
+}
+
+/// Counts over every scene and seed.
+#[derive(Default)]
+struct Anatomy {
+    runs: usize,
+    over: usize,
+    under: usize,
+    motion_clusters: usize,
+    fragments: usize,
+    outlier_clusters: usize,
+    gt_inliers: usize,
+    gt_outliers: usize,
+    outliers_in_clusters: usize,
+    inliers_as_outliers: usize,
+    outside_subset_as_outliers: usize,
+    inliers_in_fragments: usize,
+    inliers_in_other_motion: usize,
+    /// Ground-truth inliers farther than `thr_px` (Sampson) from their
+    /// motion's true F: no model can explain them.
+    inliers_beyond_thr: usize,
+    /// Ground-truth inliers within `thr_px` of another motion's true F.
+    inliers_ambiguous: usize,
+    /// Ground-truth inliers of the scenes (once per scene, not per seed):
+    /// the denominator of the two counts above.
+    scene_inliers: usize,
+}
+
+impl Anatomy {
+    /// One scene run: its ground truth (0 outlier, 1.. motions), the
+    /// predicted labels and which matches the clustering saw
+    /// (`cluster_subset`).
+    fn add(&mut self, truth: &[i32], labels: &[i32], motions: usize, clustered: &[bool]) {
+        let clusters = labels.iter().map(|&l| l + 1).max().unwrap_or(0) as usize;
+        // counts[c][t]: matches of cluster c with ground-truth label t.
+        let mut counts = vec![vec![0usize; motions + 1]; clusters];
+        for (&l, &t) in labels.iter().zip(truth) {
+            if l >= 0 {
+                counts[l as usize][t as usize] += 1;
+            }
+        }
+        let majority: Vec<usize> = counts
+            .iter()
+            .map(|c| {
+                (0..=motions)
+                    .max_by_key(|&t| (c[t], std::cmp::Reverse(t)))
+                    .unwrap()
+            })
+            .collect();
+        // The cluster holding most of motion t is its own; others with
+        // majority t are fragments.
+        let mut owner = vec![None; motions + 1];
+        for t in 1..=motions {
+            owner[t] = (0..clusters)
+                .filter(|&c| majority[c] == t)
+                .max_by_key(|&c| (counts[c][t], std::cmp::Reverse(c)));
+        }
+        for (c, &t) in majority.iter().enumerate() {
+            match t {
+                0 => self.outlier_clusters += 1,
+                t if owner[t] == Some(c) => self.motion_clusters += 1,
+                _ => self.fragments += 1,
+            }
+        }
+        self.runs += 1;
+        self.over += usize::from(clusters > motions);
+        self.under += usize::from(clusters < motions);
+        for ((&l, &t), &seen) in labels.iter().zip(truth).zip(clustered) {
+            if t == 0 {
+                self.gt_outliers += 1;
+                self.outliers_in_clusters += usize::from(l >= 0);
+                continue;
+            }
+            self.gt_inliers += 1;
+            let t = t as usize;
+            match usize::try_from(l) {
+                Err(_) => {
+                    self.inliers_as_outliers += 1;
+                    self.outside_subset_as_outliers += usize::from(!seen);
+                }
+                Ok(c) if majority[c] == t && owner[t] != Some(c) => self.inliers_in_fragments += 1,
+                Ok(c) if majority[c] != t => self.inliers_in_other_motion += 1,
+                Ok(_) => {}
+            }
+        }
+    }
+
+    /// The ground-truth inliers of `scene` beyond `thr_px` of their
+    /// motion's true F, and those within `thr_px` of another motion's
+    /// (properties of the scene, counted once whatever the seeds).
+    fn add_true_models(&mut self, scene: &Scene, thr_px: f64) {
+        let (Some(truth), Ok(points)) = (
+            &scene.labels,
+            Correspondences::new(&scene.points1, &scene.points2),
+        ) else {
+            return;
+        };
+        let thr2 = thr_px * thr_px;
+        let mut r = vec![0.0; points.len()];
+        let mut explained_by = vec![Vec::new(); points.len()];
+        for (t, f) in scene.gt_fundamentals.iter().enumerate() {
+            sampson_distances_squared(f, &points, &mut r);
+            for (i, _) in r.iter().enumerate().filter(|(_, &d)| d <= thr2) {
+                explained_by[i].push(t as i32 + 1);
+            }
+        }
+        for (&l, by) in truth.iter().zip(&explained_by).filter(|(&l, _)| l > 0) {
+            self.scene_inliers += 1;
+            self.inliers_beyond_thr += usize::from(!by.contains(&l));
+            self.inliers_ambiguous += usize::from(by.iter().any(|&t| t != l));
+        }
+    }
+
+    fn print(&self) {
+        let pct = |x: usize| 100.0 * x as f64 / self.gt_inliers.max(1) as f64;
+        let of_scenes = |x: usize| 100.0 * x as f64 / self.scene_inliers.max(1) as f64;
+        println!(
+            "scene runs {}: over-counted {}, under-counted {}",
+            self.runs, self.over, self.under
+        );
+        println!(
+            "clusters: {} motions, {} fragments, {} of gross outliers",
+            self.motion_clusters, self.fragments, self.outlier_clusters
+        );
+        println!(
+            "ground-truth inliers {}: {:.2} % called outliers ({:.2} % outside the clustered subset), {:.2} % in fragments, {:.2} % in another motion's cluster",
+            self.gt_inliers,
+            pct(self.inliers_as_outliers),
+            pct(self.outside_subset_as_outliers),
+            pct(self.inliers_in_fragments),
+            pct(self.inliers_in_other_motion)
+        );
+        println!(
+            "ground-truth inliers beyond thr_px of their motion's true F: {:.2} %; within thr_px of another motion's: {:.2} %",
+            of_scenes(self.inliers_beyond_thr),
+            of_scenes(self.inliers_ambiguous)
+        );
+        println!(
+            "ground-truth outliers {}: {:.2} % in a cluster",
+            self.gt_outliers,
+            100.0 * self.outliers_in_clusters as f64 / self.gt_outliers.max(1) as f64
+        );
+    }
+}
+
+fn scene_labels(scene: &Scene) -> Vec<i32> {
+    scene.labels.clone().unwrap_or_default()
+}
+
+fn main() -> ExitCode {
+    let o = match parse(std::env::args().skip(1)) {
+        Ok(o) => o,
+        Err(e) => {
+            eprintln!("cluster_anatomy: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    let params = o.preset.params();
+    let mut anatomy = Anatomy::default();
+    for category in o.preset.categories() {
+        for index in o.from..=o.to {
+            let scene = match params.generate_scene(1, category, index) {
+                Ok(s) => s.scene,
+                Err(e) => {
+                    eprintln!("cluster_anatomy: {category}/{index}: {e}");
+                    return ExitCode::FAILURE;
+                }
+            };
+            anatomy.add_true_models(&scene, o.params.thr_px);
+            for &seed in &o.seeds {
+                let p = Params {
+                    seed: scene_seed(seed, &scene.name),
+                    ..o.params.clone()
+                };
+                let mut clustered = vec![false; scene.len()];
+                for i in subset_indices(p.seed, scene.len(), p.cluster_subset) {
+                    clustered[i] = true;
+                }
+                match segment(&matches(&scene), &p) {
+                    Ok(seg) => anatomy.add(
+                        &scene_labels(&scene),
+                        &seg.labels,
+                        scene.num_motions(),
+                        &clustered,
+                    ),
+                    Err(e) => eprintln!("cluster_anatomy: {}: {e}", scene.name),
+                }
+            }
+        }
+    }
+    anatomy.print();
+    ExitCode::SUCCESS
+}
