@@ -13,7 +13,7 @@ use crate::plots::{clusters_over_images, focal_kde, FocalKdePlot};
 use anyhow::Result;
 use datasets::Scene;
 use geometry::Correspondences;
-use metrics::{frob_score, ClusteringMetrics};
+use metrics::{frob_score, KnownMetrics};
 use nalgebra::Matrix3;
 use segmentation::{FocalKey, HypothesisKey};
 use std::collections::{BTreeMap, VecDeque};
@@ -115,17 +115,20 @@ pub fn motion_indices(labels: &[i32]) -> BTreeMap<i32, Vec<usize>> {
     motions
 }
 
-/// The `per_scene.csv` record of a segmentation of `scene`.
+/// The `per_scene.csv` record of a segmentation of `scene`. The metrics are
+/// those of the matches whose label is known ([`KnownMetrics`]); when some
+/// are `unknown`, the status says how many were not scored.
 pub fn scene_result(
     scene: &Scene,
     segmentation: &Segmentation,
     gt_models: &[Matrix3<f64>],
 ) -> Result<SceneResult> {
-    let metrics = match &scene.labels {
-        Some(gt) => Some(ClusteringMetrics::compute(&segmentation.labels, gt)?),
+    let known = match &scene.labels {
+        Some(gt) => Some(KnownMetrics::compute(&segmentation.labels, gt)?),
         None => None,
     };
-    let status = match &segmentation.degenerate {
+    let metrics = known.and_then(|k| k.metrics);
+    let mut status = match &segmentation.degenerate {
         Some(reason) => reason.clone(),
         None if segmentation.consensus_fallback => "ok (focal filter kept all)".to_string(),
         None if segmentation.focal_abstained => {
@@ -133,6 +136,13 @@ pub fn scene_result(
         }
         None => "ok".to_string(),
     };
+    if let Some(k) = known.filter(|k| k.unknown > 0) {
+        status += &format!(
+            "; {} of {} labels unknown, not scored",
+            k.unknown,
+            scene.len()
+        );
+    }
     let mut row = SceneResult {
         scene: scene.name.clone(),
         n: scene.len(),
@@ -366,6 +376,64 @@ mod tests {
         // The semical units of a scene shared their focal lengths: the cache
         // holds a value computed once per (scene, M).
         assert!(evaluator.focals.entries.lock().unwrap().len() <= STAGE_CACHE_ENTRIES);
+    }
+}
+
+/// Scoring a file with `unknown` labels.
+#[cfg(test)]
+mod unknown_labels {
+    use super::*;
+
+    fn write_scene(dir: &std::path::Path, name: &str, rows: &[(usize, &str)]) -> Scene {
+        let mut text = String::from("x1,y1,x2,y2,label\n");
+        for &(i, label) in rows {
+            let x = i as f64;
+            text += &format!("{x},{},{},{},{label}\n", 2.0 * x, x + 3.0, 7.0 - x);
+        }
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        datasets::user::load_csv(&path, Some((64, 48))).unwrap()
+    }
+
+    /// A file with unknown rows gives the metrics of the same file with
+    /// those rows removed, for any prediction of the unknown rows, and the
+    /// status counts them.
+    #[test]
+    fn unknown_rows_score_as_if_removed() {
+        let dir = tempfile::tempdir().unwrap();
+        let labels = [
+            "1", "1", "unknown", "1", "2", "unknown", "2", "2", "0", "1", "unknown", "0",
+        ];
+        let predicted = [0, 0, 1, -1, 1, -1, 1, 0, -1, 0, 0, 1];
+        let all: Vec<(usize, &str)> = labels.iter().copied().enumerate().collect();
+        let known: Vec<(usize, &str)> = all.iter().copied().filter(|r| r.1 != "unknown").collect();
+        let with_unknown = write_scene(dir.path(), "with.csv", &all);
+        let without = write_scene(dir.path(), "without.csv", &known);
+        let mut seg = all_outliers(all.len());
+        seg.degenerate = None;
+        seg.labels = predicted.to_vec();
+        let mut seg_known = all_outliers(known.len());
+        seg_known.degenerate = None;
+        seg_known.labels = known.iter().map(|r| predicted[r.0]).collect();
+
+        let a = scene_result(&with_unknown, &seg, &[]).unwrap();
+        let b = scene_result(&without, &seg_known, &[]).unwrap();
+        let scores = |r: &SceneResult| (r.me, r.me_all, r.acc, r.fnr, r.pur, r.ari, r.nmi);
+        assert!(b.me.is_some_and(|me| me > 0.0) && b.me_all.is_some());
+        assert_eq!(scores(&a), scores(&b));
+        assert_eq!((a.gt_motions, a.gt_outliers), (b.gt_motions, b.gt_outliers));
+        assert_eq!(a.status, "ok; 3 of 12 labels unknown, not scored");
+        assert_eq!(b.status, "ok");
+        // Every unknown row predicted otherwise: the same scores.
+        seg.labels = predicted
+            .iter()
+            .enumerate()
+            .map(|(i, &p)| if labels[i] == "unknown" { 7 - p } else { p })
+            .collect();
+        assert_eq!(
+            scores(&scene_result(&with_unknown, &seg, &[]).unwrap()),
+            scores(&b)
+        );
     }
 }
 

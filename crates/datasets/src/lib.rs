@@ -44,4 +44,4 @@ pub use data_root::{
     DataRootSources, DATA_ROOT_ENV,
 };
 pub use error::{DatasetError, DATASET_HINT};
-pub use scene::{centre_principal_point, LoadOptions, Scene, MIN_POINTS};
+pub use scene::{centre_principal_point, LoadOptions, Scene, MIN_POINTS, UNKNOWN_LABEL};

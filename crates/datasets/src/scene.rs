@@ -4,6 +4,12 @@ use crate::DatasetError;
 use nalgebra::Matrix3;
 use std::collections::BTreeSet;
 
+/// Ground-truth label of a match whose truth is not known (the word
+/// `unknown` in a user match file, see [`crate::user`]): neither the outlier
+/// label 0 nor a motion, and far from the predicted outlier −1. Such matches
+/// are segmented but not scored (docs/method.md, "Metrics").
+pub const UNKNOWN_LABEL: i32 = i32::MIN;
+
 /// Fewest correspondences a scene may have: one minimal sample of the
 /// 8-point algorithm (Algorithm 1, step 1).
 pub const MIN_POINTS: usize = 8;
@@ -23,7 +29,8 @@ pub struct Scene {
     pub points1: Vec<[f64; 2]>,
     /// Points in image 2, pixels.
     pub points2: Vec<[f64; 2]>,
-    /// Ground-truth labels: 0 = outlier, 1..k = motion.
+    /// Ground-truth labels: 0 = outlier, 1..k = motion, [`UNKNOWN_LABEL`]
+    /// = not known.
     pub labels: Option<Vec<i32>>,
     /// Image size `(W, H)` in pixels.
     pub image_size: (u32, u32),
@@ -93,9 +100,18 @@ impl Scene {
             .unwrap_or(0)
     }
 
+    /// Number of matches whose ground truth is [`UNKNOWN_LABEL`] (0 when
+    /// unlabelled).
+    pub fn num_unknown(&self) -> usize {
+        self.labels
+            .as_ref()
+            .map(|l| l.iter().filter(|&&x| x == UNKNOWN_LABEL).count())
+            .unwrap_or(0)
+    }
+
     /// Checks the invariants every loader guarantees: equal lengths of
     /// `points1`, `points2` and `labels`; N ≥ [`MIN_POINTS`]; finite
-    /// coordinates; labels ≥ 0 and, when ground-truth matrices are given, no
+    /// coordinates; labels ≥ 0 or [`UNKNOWN_LABEL`] and, when ground-truth matrices are given, no
     /// label above their count; a non-zero image size; finite principal
     /// point and matrices; a positive finite true focal; images, if any, of
     /// the stated size.
@@ -184,11 +200,12 @@ impl Scene {
         Ok(())
     }
 
-    /// Labels ≥ 0 and, with ground-truth matrices, none above their count.
+    /// Labels ≥ 0 or [`UNKNOWN_LABEL`] and, with ground-truth matrices, none
+    /// above their count.
     fn validate_labels(&self) -> Result<(), DatasetError> {
         let err = |field, index, problem| self.invalid(field, index, problem);
         if let Some(labels) = &self.labels {
-            if let Some(i) = labels.iter().position(|&l| l < 0) {
+            if let Some(i) = labels.iter().position(|&l| l < 0 && l != UNKNOWN_LABEL) {
                 return Err(err(
                     "labels",
                     Some(i),

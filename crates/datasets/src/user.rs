@@ -2,16 +2,23 @@
 //! with the image size from the caller or from a sidecar TOML file.
 //!
 //! * CSV: a header row naming the columns `x1, y1, x2, y2` and optionally
-//!   `label` (any order, case-insensitive), one correspondence per row.
+//!   `label` (any order, case-insensitive), one correspondence per row. Any
+//!   other column, or one named twice, is an error naming it (a misspelt
+//!   `lable` would otherwise leave the file unlabelled).
 //! * `matches.txt`: whitespace-separated `x1 y1 x2 y2 [label]` per line;
 //!   blank lines and lines starting with `#` are skipped.
+//! * Labels: `0` = gross outlier, `1..k` = motion, or the word `unknown`
+//!   (any case) for a match whose truth is not known ([`UNKNOWN_LABEL`]):
+//!   it is segmented but not scored. Negative numbers and empty fields are
+//!   errors, so neither the outlier `0` nor a predicted outlier's `-1` can
+//!   be read as "unknown".
 //! * Sidecar: the data file's path with the extension `.toml`
 //!   (`scene.csv` → `scene.toml`), see [`Sidecar`].
 //!
 //! The principal point is the image centre ((W-1)/2, (H-1)/2) unless the
 //! sidecar gives one (docs/method.md, "Input").
 
-use crate::{centre_principal_point, DatasetError, Scene};
+use crate::{centre_principal_point, DatasetError, Scene, UNKNOWN_LABEL};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
@@ -97,6 +104,7 @@ pub fn load_csv(
         .headers()
         .map_err(|e| parse_err(Some(1), e.to_string()))?
         .clone();
+    check_columns(&headers).map_err(|problem| parse_err(Some(1), problem))?;
     let column = |name: &str| headers.iter().position(|h| h.eq_ignore_ascii_case(name));
     let mut cols = [0usize; 4];
     for (slot, name) in cols.iter_mut().zip(["x1", "y1", "x2", "y2"]) {
@@ -126,12 +134,10 @@ pub fn load_csv(
         }
         let label = match label_col {
             None => None,
-            Some(col) => Some(field(col).parse::<i32>().map_err(|_| {
-                parse_err(
-                    line,
-                    format!("column `label`: {:?} is not an integer", field(col)),
-                )
-            })?),
+            Some(col) => Some(
+                parse_label(field(col))
+                    .map_err(|problem| parse_err(line, format!("column `label`: {problem}")))?,
+            ),
         };
         rows.push(xy, label);
     }
@@ -182,14 +188,55 @@ pub fn load_matches_txt(
         }
         let label = match fields.get(4) {
             None => None,
-            Some(s) => Some(
-                s.parse::<i32>()
-                    .map_err(|_| parse_err(format!("column 5: {s:?} is not an integer label")))?,
-            ),
+            Some(s) => {
+                Some(parse_label(s).map_err(|problem| parse_err(format!("column 5: {problem}")))?)
+            }
         };
         rows.push(xy, label);
     }
     finish(path, rows, image_size)
+}
+
+/// The columns a CSV match file may have; `label` is optional.
+const CSV_COLUMNS: [&str; 5] = ["x1", "y1", "x2", "y2", "label"];
+
+/// Every header names one of [`CSV_COLUMNS`] (any case), none twice.
+fn check_columns(headers: &csv::StringRecord) -> Result<(), String> {
+    let expected = "the columns are x1, y1, x2, y2 and optionally label";
+    let mut seen = Vec::new();
+    for header in headers {
+        let name = header.to_ascii_lowercase();
+        if !CSV_COLUMNS.contains(&name.as_str()) {
+            return Err(format!("unknown column `{header}`: {expected}"));
+        }
+        if seen.contains(&name) {
+            return Err(format!("column `{header}` appears twice: {expected}"));
+        }
+        seen.push(name);
+    }
+    Ok(())
+}
+
+/// A ground-truth label: an integer ≥ 0, or `unknown` (any case) for
+/// [`UNKNOWN_LABEL`]; the error says which values are allowed.
+///
+/// ```
+/// # use datasets::user::parse_label;
+/// assert_eq!(parse_label("2"), Ok(2));
+/// assert_eq!(parse_label("Unknown"), Ok(datasets::UNKNOWN_LABEL));
+/// assert!(parse_label("-1").unwrap_err().contains("negative"));
+/// assert!(parse_label("").is_err());
+/// ```
+pub fn parse_label(s: &str) -> Result<i32, String> {
+    let allowed = "labels are 0 (outlier), 1, 2, … (motion) or `unknown`";
+    if s.eq_ignore_ascii_case("unknown") {
+        return Ok(UNKNOWN_LABEL);
+    }
+    match s.parse::<i32>() {
+        Ok(label) if label >= 0 => Ok(label),
+        Ok(label) => Err(format!("{label} is negative: {allowed}")),
+        Err(_) => Err(format!("{s:?} is not an integer label: {allowed}")),
+    }
 }
 
 /// A finite or non-finite number; validation reports non-finite ones with

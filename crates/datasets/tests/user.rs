@@ -124,26 +124,132 @@ fn csv_errors_name_file_line_and_column() {
         assert!(msg.starts_with(&path.display().to_string()), "{msg}");
         assert!(msg.contains(&expected), "expected {expected:?} in {msg}");
     }
-    let labels: String = (0..8)
-        .map(|i| format!("1,2,3,4,{}\n", if i == 6 { -2 } else { 1 }))
+    // A negative label is refused where it is read: -1 and -2 are not
+    // spellings of "unknown".
+    for bad in ["-1", "-2", ""] {
+        let labels: String = (0..8)
+            .map(|i| format!("1,2,3,4,{}\n", if i == 6 { bad } else { "1" }))
+            .collect();
+        let path = write(
+            dir.path(),
+            "neg.csv",
+            &format!("x1,y1,x2,y2,label\n{labels}"),
+        );
+        let err = load_csv(&path, Some((10, 10))).unwrap_err();
+        assert!(
+            matches!(&err, DatasetError::Parse { line: Some(8), .. }),
+            "{err}"
+        );
+        let msg = err.to_string();
+        assert!(
+            msg.contains("column `label`") && msg.contains("or `unknown`"),
+            "{msg}"
+        );
+    }
+}
+
+#[test]
+fn csv_unknown_columns_are_errors_naming_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let body: String = rows(8)
+        .iter()
+        .map(|r| format!("{},{},{},{},1\n", r[0], r[1], r[2], r[3]))
         .collect();
-    let path = write(
-        dir.path(),
-        "neg.csv",
-        &format!("x1,y1,x2,y2,label\n{labels}"),
-    );
-    let err = load_csv(&path, Some((10, 10))).unwrap_err();
-    assert!(
-        matches!(
-            &err,
-            DatasetError::InvalidScene {
-                field: "labels",
-                index: Some(6),
-                ..
-            }
-        ),
-        "{err}"
-    );
+    let cases = [
+        ("x1,y1,x2,y2,lable", "unknown column `lable`"),
+        ("x1,y1,x2,y2,score", "unknown column `score`"),
+        ("x1,y1,x2,y2,X1", "column `X1` appears twice"),
+    ];
+    for (header, expected) in cases {
+        let path = write(dir.path(), "typo.csv", &format!("{header}\n{body}"));
+        let msg = load_csv(&path, Some((10, 10))).unwrap_err().to_string();
+        assert_eq!(
+            msg,
+            format!(
+                "{}: line 1: {expected}: the columns are x1, y1, x2, y2 and optionally label",
+                path.display()
+            )
+        );
+    }
+}
+
+#[test]
+fn unknown_labels_are_read_as_unknown_label() {
+    let dir = tempfile::tempdir().unwrap();
+    let words = [
+        "1", "unknown", "0", "2", "Unknown", "1", "UNKNOWN", "2", "0",
+    ];
+    let mut csv = String::from("x1,y1,x2,y2,label\n");
+    let mut txt = String::new();
+    for (r, word) in rows(9).iter().zip(words) {
+        csv += &format!("{},{},{},{},{word}\n", r[0], r[1], r[2], r[3]);
+        txt += &format!("{} {} {} {} {word}\n", r[0], r[1], r[2], r[3]);
+    }
+    let u = datasets::UNKNOWN_LABEL;
+    let expected = vec![1, u, 0, 2, u, 1, u, 2, 0];
+    for scene in [
+        load_csv(write(dir.path(), "u.csv", &csv), Some((10, 10))).unwrap(),
+        load_matches_txt(write(dir.path(), "u.txt", &txt), Some((10, 10))).unwrap(),
+    ] {
+        assert_eq!(scene.labels.as_ref(), Some(&expected));
+        assert_eq!(scene.num_unknown(), 3);
+        assert_eq!(scene.num_outliers(), 2);
+        assert_eq!(scene.num_motions(), 2);
+    }
+}
+
+/// One row of the table in datasets/real-sift/README.md: scene, matches,
+/// known, unknown, per-label counts.
+type ReadmeRow = (String, usize, usize, usize, Vec<(i32, usize)>);
+
+fn real_sift_readme(dir: &Path) -> Vec<ReadmeRow> {
+    let text = std::fs::read_to_string(dir.join("README.md")).unwrap();
+    text.lines()
+        .filter(|l| l.starts_with("| ") && !l.starts_with("| scene") && !l.starts_with("| total"))
+        .map(|l| {
+            let cells: Vec<&str> = l.trim_matches('|').split('|').map(str::trim).collect();
+            let per_label = cells[4]
+                .split(", ")
+                .map(|kv| {
+                    let (k, v) = kv.split_once(": ").unwrap();
+                    (k.parse().unwrap(), v.parse().unwrap())
+                })
+                .collect();
+            let n = |i: usize| cells[i].parse::<usize>().unwrap();
+            (cells[0].to_string(), n(1), n(2), n(3), per_label)
+        })
+        .collect()
+}
+
+/// The committed SIFT benchmark loads, and the loader counts what the
+/// script that wrote it printed into its README: matches, known, unknown
+/// and every label.
+#[test]
+fn real_sift_files_load_with_the_readme_counts() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../datasets/real-sift");
+    let table = real_sift_readme(&dir);
+    assert_eq!(table.len(), 19);
+    for (name, matches, known, unknown, per_label) in table {
+        let scene = load_csv(dir.join(format!("{name}.csv")), None).unwrap();
+        assert_eq!(scene.name, name);
+        assert_eq!(scene.image_size, (640, 480));
+        assert_eq!(
+            (scene.len(), scene.num_unknown()),
+            (matches, unknown),
+            "{name}"
+        );
+        let labels = scene.labels.unwrap();
+        let counted: Vec<(i32, usize)> = per_label
+            .iter()
+            .map(|&(k, _)| (k, labels.iter().filter(|&&l| l == k).count()))
+            .collect();
+        assert_eq!(counted, per_label, "{name}");
+        assert_eq!(
+            per_label.iter().map(|c| c.1).sum::<usize>(),
+            known,
+            "{name}"
+        );
+    }
 }
 
 #[test]
@@ -190,7 +296,11 @@ fn matches_txt_errors_name_file_and_line() {
         ),
         (
             "1 2 3 4 one\n",
-            "line 1: column 5: \"one\" is not an integer label",
+            "line 1: column 5: \"one\" is not an integer label: labels are 0 (outlier), 1, 2, … (motion) or `unknown`",
+        ),
+        (
+            "1 2 3 4 -1\n",
+            "line 1: column 5: -1 is negative: labels are 0 (outlier), 1, 2, … (motion) or `unknown`",
         ),
     ];
     for (text, expected) in cases {

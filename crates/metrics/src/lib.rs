@@ -5,7 +5,9 @@
 //! - predicted labels: [`PREDICTED_OUTLIER`] (−1) marks a point rejected as an
 //!   outlier, any id `>= 0` names a predicted cluster (ids are arbitrary);
 //! - ground-truth labels: [`GROUND_TRUTH_OUTLIER`] (0) marks a gross outlier,
-//!   ids `>= 1` name rigid motions.
+//!   ids `>= 1` name rigid motions; [`GROUND_TRUTH_UNKNOWN`] marks a point
+//!   whose truth is not known, which [`KnownMetrics`] leaves out (every
+//!   other function refuses it as a negative label).
 //!
 //! The Hungarian matchings use the Jonker–Volgenant solver of the `lsap`
 //! crate (a port of `scipy.optimize.linear_sum_assignment`), with cluster ids
@@ -25,11 +27,13 @@
 
 mod frob;
 mod information;
+mod known;
 mod labels;
 mod matching;
 
 pub use frob::frob_score;
 pub use information::{adjusted_rand_index, normalized_mutual_info};
+pub use known::KnownMetrics;
 pub use matching::{
     false_negative_rate, misclassification_error, misclassification_error_all, purity,
 };
@@ -46,6 +50,11 @@ pub const PREDICTED_OUTLIER: i32 = -1;
 
 /// Ground-truth label of a gross outlier.
 pub const GROUND_TRUTH_OUTLIER: i32 = 0;
+
+/// Ground-truth label of a point whose truth is not known (equal to
+/// `datasets::UNKNOWN_LABEL`, the word `unknown` in a user match file):
+/// scored by [`KnownMetrics`], which leaves such points out.
+pub const GROUND_TRUTH_UNKNOWN: i32 = i32::MIN;
 
 /// Why a pair of label vectors cannot be scored.
 #[derive(Debug, Clone, PartialEq, Eq, Error)]
