@@ -2,8 +2,8 @@
 //! `preset` of a config's synthetic dataset) and their scene lists.
 
 use super::{
-    generate_driving_scene, generate_hopef_scene, BackgroundParams, DrivingParams, SyntheticParams,
-    SyntheticScene,
+    generate_driving_random_scene, generate_driving_scene, generate_hopef_scene, BackgroundParams,
+    DrivingParams, DrivingRandomParams, SyntheticParams, SyntheticScene,
 };
 use crate::hopef_synth::{self, HopefParams};
 use crate::DatasetError;
@@ -42,6 +42,13 @@ pub enum Preset {
     /// least 35 matches per object ([`Preset::adelaide_like_params`]).
     /// Categories 1–4 × folders 0000–0999 split as HOPE-F's: 4000 scenes.
     AdelaideLike,
+    /// `driving-random`: `kitti-real`'s driving scenes with every difficulty
+    /// drawn per scene ([`generate_driving_random_scene`]): N 200–20 000
+    /// (log-uniform), 0–3 movers of 2–30 % of N each, each at a median
+    /// Sampson distance of 0.5–20 px (log-uniform) from the background's F,
+    /// 0–30 % outliers, σ 0.3–1.5 px. One category folder, 0 (the number of
+    /// motions is drawn), folders 0000–0999 split as HOPE-F's: 1000 scenes.
+    DrivingRandom,
 }
 
 /// The parameters of a preset's generator.
@@ -54,6 +61,8 @@ pub enum PresetParams {
     Hopef(HopefParams),
     /// The driving-scene generator ([`generate_driving_scene`]).
     Driving(DrivingParams),
+    /// The `driving-random` generator ([`generate_driving_random_scene`]).
+    DrivingRandom(DrivingRandomParams),
 }
 
 impl PresetParams {
@@ -64,6 +73,7 @@ impl PresetParams {
             PresetParams::Synthetic(p) => p.validate(),
             PresetParams::Hopef(p) => p.validate(),
             PresetParams::Driving(p) => p.validate(),
+            PresetParams::DrivingRandom(p) => p.validate(),
         }
     }
 
@@ -78,6 +88,9 @@ impl PresetParams {
             PresetParams::Synthetic(p) => generate_hopef_scene(p, seed, category, index),
             PresetParams::Hopef(p) => hopef_synth::generate_scene(p, seed, category, index),
             PresetParams::Driving(p) => generate_driving_scene(p, seed, category, index),
+            PresetParams::DrivingRandom(p) => {
+                generate_driving_random_scene(p, seed, category, index)
+            }
         }
     }
 
@@ -85,24 +98,25 @@ impl PresetParams {
     pub fn as_synthetic(&self) -> Option<&SyntheticParams> {
         match self {
             PresetParams::Synthetic(p) => Some(p),
-            PresetParams::Hopef(_) | PresetParams::Driving(_) => None,
+            _ => None,
         }
     }
 }
 
 impl Preset {
     /// All presets.
-    pub const ALL: [Preset; 6] = [
+    pub const ALL: [Preset; 7] = [
         Preset::HopefLike,
         Preset::Quick,
         Preset::KittiLike,
         Preset::Hopef,
         Preset::KittiReal,
         Preset::AdelaideLike,
+        Preset::DrivingRandom,
     ];
 
     /// The preset's name (`hopef-like`, `quick`, `kitti-like`, `hopef`,
-    /// `kitti-real`).
+    /// `kitti-real`, `adelaide-like`, `driving-random`).
     pub fn name(self) -> &'static str {
         match self {
             Preset::HopefLike => "hopef-like",
@@ -111,6 +125,7 @@ impl Preset {
             Preset::Hopef => "hopef",
             Preset::KittiReal => "kitti-real",
             Preset::AdelaideLike => "adelaide-like",
+            Preset::DrivingRandom => "driving-random",
         }
     }
 
@@ -144,6 +159,9 @@ impl Preset {
             Preset::Hopef => return PresetParams::Hopef(HopefParams::default()),
             Preset::KittiReal => return PresetParams::Driving(DrivingParams::default()),
             Preset::AdelaideLike => return PresetParams::Hopef(Self::adelaide_like_params()),
+            Preset::DrivingRandom => {
+                return PresetParams::DrivingRandom(DrivingRandomParams::default())
+            }
         })
     }
 
@@ -185,6 +203,7 @@ impl Preset {
             PresetParams::Synthetic(_) => table.try_into().map(PresetParams::Synthetic),
             PresetParams::Hopef(_) => table.try_into().map(PresetParams::Hopef),
             PresetParams::Driving(_) => table.try_into().map(PresetParams::Driving),
+            PresetParams::DrivingRandom(_) => table.try_into().map(PresetParams::DrivingRandom),
         }
     }
 
@@ -193,6 +212,7 @@ impl Preset {
         match self {
             Preset::HopefLike | Preset::Hopef | Preset::AdelaideLike => vec![1, 2, 3, 4],
             Preset::Quick | Preset::KittiLike | Preset::KittiReal => vec![1, 2],
+            Preset::DrivingRandom => vec![0],
         }
     }
 
@@ -202,7 +222,9 @@ impl Preset {
             Preset::HopefLike => 900..=999,
             Preset::Quick => 900..=901,
             Preset::KittiLike => 900..=909,
-            Preset::Hopef | Preset::KittiReal | Preset::AdelaideLike => 0..=999,
+            Preset::Hopef | Preset::KittiReal | Preset::AdelaideLike | Preset::DrivingRandom => {
+                0..=999
+            }
         }
     }
 
