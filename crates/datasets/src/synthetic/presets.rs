@@ -2,8 +2,9 @@
 //! `preset` of a config's synthetic dataset) and their scene lists.
 
 use super::{
-    generate_driving_random_scene, generate_driving_scene, generate_hopef_scene, BackgroundParams,
-    DrivingParams, DrivingRandomParams, SyntheticParams, SyntheticScene,
+    generate_driving_random_scene, generate_driving_scene, generate_hopef_scene,
+    generate_objects3d_scene, BackgroundParams, DrivingParams, DrivingRandomParams,
+    Objects3dParams, SyntheticParams, SyntheticScene,
 };
 use crate::hopef_synth::{self, HopefParams};
 use crate::DatasetError;
@@ -49,6 +50,14 @@ pub enum Preset {
     /// 0–30 % outliers, σ 0.3–1.5 px. One category folder, 0 (the number of
     /// motions is drawn), folders 0000–0999 split as HOPE-F's: 1000 scenes.
     DrivingRandom,
+    /// `objects-3d`: 1–5 general 3-D objects (points on ellipsoids, relief
+    /// planes, boxes) turning 5–40° about arbitrary axes before a moving
+    /// camera, a static background in half the scenes, N 100–3000
+    /// (log-uniform), 0–40 % outliers, objects down to 15 matches, focal
+    /// 0.6–2.5 × max(W, H), W 400–1600, H 300–1200, every pair of motions
+    /// distinct ([`generate_objects3d_scene`]). One category folder, 0,
+    /// folders 0000–0999 split as HOPE-F's: 1000 scenes.
+    Objects3d,
 }
 
 /// The parameters of a preset's generator.
@@ -63,6 +72,8 @@ pub enum PresetParams {
     Driving(DrivingParams),
     /// The `driving-random` generator ([`generate_driving_random_scene`]).
     DrivingRandom(DrivingRandomParams),
+    /// The `objects-3d` generator ([`generate_objects3d_scene`]).
+    Objects3d(Objects3dParams),
 }
 
 impl PresetParams {
@@ -74,6 +85,7 @@ impl PresetParams {
             PresetParams::Hopef(p) => p.validate(),
             PresetParams::Driving(p) => p.validate(),
             PresetParams::DrivingRandom(p) => p.validate(),
+            PresetParams::Objects3d(p) => p.validate(),
         }
     }
 
@@ -91,6 +103,7 @@ impl PresetParams {
             PresetParams::DrivingRandom(p) => {
                 generate_driving_random_scene(p, seed, category, index)
             }
+            PresetParams::Objects3d(p) => generate_objects3d_scene(p, seed, category, index),
         }
     }
 
@@ -105,7 +118,7 @@ impl PresetParams {
 
 impl Preset {
     /// All presets.
-    pub const ALL: [Preset; 7] = [
+    pub const ALL: [Preset; 8] = [
         Preset::HopefLike,
         Preset::Quick,
         Preset::KittiLike,
@@ -113,10 +126,11 @@ impl Preset {
         Preset::KittiReal,
         Preset::AdelaideLike,
         Preset::DrivingRandom,
+        Preset::Objects3d,
     ];
 
     /// The preset's name (`hopef-like`, `quick`, `kitti-like`, `hopef`,
-    /// `kitti-real`, `adelaide-like`, `driving-random`).
+    /// `kitti-real`, `adelaide-like`, `driving-random`, `objects-3d`).
     pub fn name(self) -> &'static str {
         match self {
             Preset::HopefLike => "hopef-like",
@@ -126,6 +140,7 @@ impl Preset {
             Preset::KittiReal => "kitti-real",
             Preset::AdelaideLike => "adelaide-like",
             Preset::DrivingRandom => "driving-random",
+            Preset::Objects3d => "objects-3d",
         }
     }
 
@@ -162,6 +177,7 @@ impl Preset {
             Preset::DrivingRandom => {
                 return PresetParams::DrivingRandom(DrivingRandomParams::default())
             }
+            Preset::Objects3d => return PresetParams::Objects3d(Objects3dParams::default()),
         })
     }
 
@@ -204,6 +220,7 @@ impl Preset {
             PresetParams::Hopef(_) => table.try_into().map(PresetParams::Hopef),
             PresetParams::Driving(_) => table.try_into().map(PresetParams::Driving),
             PresetParams::DrivingRandom(_) => table.try_into().map(PresetParams::DrivingRandom),
+            PresetParams::Objects3d(_) => table.try_into().map(PresetParams::Objects3d),
         }
     }
 
@@ -212,7 +229,7 @@ impl Preset {
         match self {
             Preset::HopefLike | Preset::Hopef | Preset::AdelaideLike => vec![1, 2, 3, 4],
             Preset::Quick | Preset::KittiLike | Preset::KittiReal => vec![1, 2],
-            Preset::DrivingRandom => vec![0],
+            Preset::DrivingRandom | Preset::Objects3d => vec![0],
         }
     }
 
@@ -222,9 +239,11 @@ impl Preset {
             Preset::HopefLike => 900..=999,
             Preset::Quick => 900..=901,
             Preset::KittiLike => 900..=909,
-            Preset::Hopef | Preset::KittiReal | Preset::AdelaideLike | Preset::DrivingRandom => {
-                0..=999
-            }
+            Preset::Hopef
+            | Preset::KittiReal
+            | Preset::AdelaideLike
+            | Preset::DrivingRandom
+            | Preset::Objects3d => 0..=999,
         }
     }
 
