@@ -134,6 +134,6 @@ fn parameter_overrides_and_bad_input() {
         .assert()
         .failure()
         .stderr(predicate::str::contains(
-            "unknown preset `huge` (available: hopef-like, quick, kitti-like, hopef, kitti-real, adelaide-like)",
+            "unknown preset `huge` (available: hopef-like, quick, kitti-like, hopef, kitti-real, adelaide-like, driving-random, objects-3d)",
         ));
 }

@@ -15,7 +15,7 @@ EXPERIMENT FILE (TOML)
   categories = [1, 2]          hopef, synthetic: numbers of moving objects
   index_range = [900, 909]     inclusive scene indices (hopef folder number,
                                else position in the scene list)
-  preset = \"quick\"             synthetic: quick | hopef-like | kitti-like | hopef | kitti-real | adelaide-like
+  preset = \"quick\"             synthetic: quick | hopef-like | kitti-like | hopef | kitti-real | adelaide-like | driving-random | objects-3d
   generator_seed = 1           synthetic generator seed
   files = [\"pair.csv\"]         csv: match files (x1,y1,x2,y2[,label]; .txt:
                                x1 y1 x2 y2 [label]), relative to the data root

@@ -193,5 +193,6 @@ fn draw(
             ratios: matches.iter().map(|m| m.ratio).collect(),
             attempts: attempt,
         }),
+        record: None,
     }))
 }

@@ -57,7 +57,7 @@ const PILOT_POINTS: usize = 64;
 const BACKGROUND_ATTEMPTS_PER_POINT: usize = 200;
 
 /// Noise-free matches `(x₁, x₂)` of one motion.
-type Tracks = Vec<([f64; 2], [f64; 2])>;
+pub(super) type Tracks = Vec<([f64; 2], [f64; 2])>;
 
 /// How many matches each part of the scene gets.
 struct Counts {
@@ -67,19 +67,19 @@ struct Counts {
 }
 
 /// One placed car: its tracks, true F and image-1 bounding box.
-struct Car {
-    tracks: Tracks,
-    f: Matrix3<f64>,
-    bbox: [f64; 4],
+pub(super) struct Car {
+    pub(super) tracks: Tracks,
+    pub(super) f: Matrix3<f64>,
+    pub(super) bbox: [f64; 4],
 }
 
 /// The camera, its motion and the background's F, shared by every phase.
-struct Rig {
-    cam: Camera,
-    ego: EgoMotion,
-    f_background: Matrix3<f64>,
+pub(super) struct Rig {
+    pub(super) cam: Camera,
+    pub(super) ego: EgoMotion,
+    pub(super) f_background: Matrix3<f64>,
     /// Distance noise-free points keep from the image border, px.
-    margin: f64,
+    pub(super) margin: f64,
 }
 
 /// Generates driving scene `<category>/<index>` (`category` moving cars) of
@@ -145,11 +145,12 @@ pub fn generate_driving_scene(
         ego_rotation: rig.ego.rotation,
         ego_translation: rig.ego.translation,
         hopef: None,
+        record: None,
     })
 }
 
 /// [`DatasetError::Generation`] for scene `name`.
-fn generation_error(name: &str, problem: String) -> DatasetError {
+pub(super) fn generation_error(name: &str, problem: String) -> DatasetError {
     DatasetError::Generation {
         scene: name.to_string(),
         problem,
@@ -157,7 +158,7 @@ fn generation_error(name: &str, problem: String) -> DatasetError {
 }
 
 /// A uniform draw from `range` with a random sign.
-fn signed(rng: &mut ChaCha8Rng, range: [f64; 2]) -> f64 {
+pub(super) fn signed(rng: &mut ChaCha8Rng, range: [f64; 2]) -> f64 {
     let v = uniform(rng, range);
     if rng.gen_bool(0.5) {
         v
@@ -167,7 +168,7 @@ fn signed(rng: &mut ChaCha8Rng, range: [f64; 2]) -> f64 {
 }
 
 /// The rotation by `degrees` about the camera's y axis (the vertical).
-fn yaw(degrees: f64) -> Matrix3<f64> {
+pub(super) fn yaw(degrees: f64) -> Matrix3<f64> {
     *Rotation3::from_axis_angle(&Vector3::y_axis(), degrees.to_radians()).matrix()
 }
 
@@ -188,7 +189,7 @@ fn turn(rng: &mut ChaCha8Rng, params: &DrivingParams) -> Matrix3<f64> {
 
 /// The camera (principal point at the centre), its ego-motion along the
 /// chord of its arc, and the background's F (`None` for a singular K).
-fn draw_rig(rng: &mut ChaCha8Rng, params: &DrivingParams) -> Option<Rig> {
+pub(super) fn draw_rig(rng: &mut ChaCha8Rng, params: &DrivingParams) -> Option<Rig> {
     let (width, height) = (
         f64::from(params.image_width),
         f64::from(params.image_height),
@@ -264,13 +265,13 @@ fn draw_counts(
 }
 
 /// Whether `p` is in the image at least `margin` px from its border.
-fn inside(rig: &Rig, p: [f64; 2]) -> bool {
+pub(super) fn inside(rig: &Rig, p: [f64; 2]) -> bool {
     let m = rig.margin;
     (m..=rig.cam.width - 1.0 - m).contains(&p[0]) && (m..=rig.cam.height - 1.0 - m).contains(&p[1])
 }
 
 /// Whether two image boxes `[x_lo, y_lo, x_hi, y_hi]`, grown by `pad`, meet.
-fn boxes_meet(a: &[f64; 4], b: &[f64; 4], pad: f64) -> bool {
+pub(super) fn boxes_meet(a: &[f64; 4], b: &[f64; 4], pad: f64) -> bool {
     a[0] - pad <= b[2] && b[0] - pad <= a[2] && a[1] - pad <= b[3] && b[1] - pad <= a[3]
 }
 
@@ -372,7 +373,7 @@ fn separable(
 }
 
 /// The median Sampson distance (px) of `tracks` to `f`.
-fn median_sampson(f: &Matrix3<f64>, tracks: &Tracks) -> f64 {
+pub(super) fn median_sampson(f: &Matrix3<f64>, tracks: &Tracks) -> f64 {
     let mut d: Vec<f64> = tracks
         .iter()
         .map(|&(p1, p2)| sampson_distance(f, p1, p2))
@@ -383,7 +384,7 @@ fn median_sampson(f: &Matrix3<f64>, tracks: &Tracks) -> f64 {
 
 /// The 8 corners of the box of size `dims` centred at `centre`, rotated by
 /// `heading`.
-fn box_corners(
+pub(super) fn box_corners(
     centre: &Vector3<f64>,
     heading: &Matrix3<f64>,
     dims: &Vector3<f64>,
@@ -402,7 +403,7 @@ fn box_corners(
 
 /// `n` points uniform on the faces of the box that face camera 1 (outward
 /// normal pointing towards the camera centre), by area.
-fn face_points(
+pub(super) fn face_points(
     rng: &mut ChaCha8Rng,
     centre: &Vector3<f64>,
     heading: &Matrix3<f64>,
@@ -439,7 +440,7 @@ fn face_points(
 /// `n` static points in view in both images and outside the cars'
 /// image-1 boxes: a pixel of image 1 at a background depth, or on the road
 /// below the horizon where that is nearer; `None` when too many draws fail.
-fn background_tracks(
+pub(super) fn background_tracks(
     rng: &mut ChaCha8Rng,
     params: &DrivingParams,
     rig: &Rig,
@@ -474,7 +475,7 @@ fn background_tracks(
 
 /// The `tracks` with truncated Gaussian noise, labelled `label`; they stay
 /// in the images because every noise-free point keeps the margin.
-fn add_noisy(
+pub(super) fn add_noisy(
     rng: &mut ChaCha8Rng,
     params: &DrivingParams,
     tracks: &Tracks,

@@ -33,19 +33,36 @@
 //! HOPE-F layout writer in `write.rs`. The driving scenes of the
 //! `kitti-real` preset (real image size, N 1 000–5 000, separable cars) have
 //! their own generator ([`generate_driving_scene`], `driving.rs`) and
-//! parameters ([`DrivingParams`], `driving_params.rs`).
+//! parameters ([`DrivingParams`], `driving_params.rs`). The randomised
+//! families, whose every difficulty is drawn per scene and recorded
+//! ([`SceneRecord`], `record.rs`): `driving-random`
+//! ([`generate_driving_random_scene`], `driving_random.rs`,
+//! `driving_random_params.rs`) and `objects-3d`
+//! ([`generate_objects3d_scene`], `objects3d.rs`, `objects3d_params.rs`,
+//! `surfaces.rs`).
 
 mod driving;
 mod driving_params;
+mod driving_random;
+mod driving_random_params;
 mod generate;
+mod objects3d;
+mod objects3d_params;
 mod presets;
+mod record;
 mod sampling;
+mod surfaces;
 mod write;
 
 pub use driving::{generate_driving_scene, CAR_ATTEMPTS, LAYOUT_ATTEMPTS};
 pub use driving_params::{DrivingParams, MAX_CARS};
+pub use driving_random::{generate_driving_random_scene, MAX_SCALE, MAX_TURN_DEG};
+pub use driving_random_params::{DrivingRandomParams, MAX_MOVERS};
 pub use generate::MAX_OBJECTS;
+pub use objects3d::{generate_objects3d_scene, OBJECT_ATTEMPTS, SCENE_ATTEMPTS};
+pub use objects3d_params::{Objects3dParams, SurfaceMix, MAX_OBJECTS_3D};
 pub use presets::{Preset, PresetParams};
+pub use record::{write_records_csv, MotionKind, MotionRecord, SceneRecord, RECORDS_FILE};
 pub(crate) use sampling::{fundamental, uniform};
 pub(crate) use write::write_npz_file;
 pub use write::{write_hopef_layout, write_hopef_layout_with, write_hopef_scene};
@@ -349,6 +366,9 @@ pub struct SyntheticScene {
     /// The HOPE-F-faithful generator's record (`hopef` preset); `None` for
     /// the scenes of [`generate_hopef_scene`].
     pub hopef: Option<HopefTruth>,
+    /// The drawn difficulty of a scene of the randomised families
+    /// (`driving-random`, `objects-3d`); `None` for the other presets.
+    pub record: Option<SceneRecord>,
 }
 
 /// The seed of scene `(category, index)` of a dataset generated with
@@ -417,5 +437,6 @@ pub fn generate_hopef_scene(
         ego_rotation: generated.ego.rotation,
         ego_translation: generated.ego.translation,
         hopef: None,
+        record: None,
     })
 }

@@ -2,8 +2,9 @@
 //! `preset` of a config's synthetic dataset) and their scene lists.
 
 use super::{
-    generate_driving_scene, generate_hopef_scene, BackgroundParams, DrivingParams, SyntheticParams,
-    SyntheticScene,
+    generate_driving_random_scene, generate_driving_scene, generate_hopef_scene,
+    generate_objects3d_scene, BackgroundParams, DrivingParams, DrivingRandomParams,
+    Objects3dParams, SyntheticParams, SyntheticScene,
 };
 use crate::hopef_synth::{self, HopefParams};
 use crate::DatasetError;
@@ -42,6 +43,21 @@ pub enum Preset {
     /// least 35 matches per object ([`Preset::adelaide_like_params`]).
     /// Categories 1–4 × folders 0000–0999 split as HOPE-F's: 4000 scenes.
     AdelaideLike,
+    /// `driving-random`: `kitti-real`'s driving scenes with every difficulty
+    /// drawn per scene ([`generate_driving_random_scene`]): N 200–20 000
+    /// (log-uniform), 0–3 movers of 2–30 % of N each, each at a median
+    /// Sampson distance of 0.5–20 px (log-uniform) from the background's F,
+    /// 0–30 % outliers, σ 0.3–1.5 px. One category folder, 0 (the number of
+    /// motions is drawn), folders 0000–0999 split as HOPE-F's: 1000 scenes.
+    DrivingRandom,
+    /// `objects-3d`: 1–5 general 3-D objects (points on ellipsoids, relief
+    /// planes, boxes) turning 5–40° about arbitrary axes before a moving
+    /// camera, a static background in half the scenes, N 100–3000
+    /// (log-uniform), 0–40 % outliers, objects down to 15 matches, focal
+    /// 0.6–2.5 × max(W, H), W 400–1600, H 300–1200, every pair of motions
+    /// distinct ([`generate_objects3d_scene`]). One category folder, 0,
+    /// folders 0000–0999 split as HOPE-F's: 1000 scenes.
+    Objects3d,
 }
 
 /// The parameters of a preset's generator.
@@ -54,6 +70,10 @@ pub enum PresetParams {
     Hopef(HopefParams),
     /// The driving-scene generator ([`generate_driving_scene`]).
     Driving(DrivingParams),
+    /// The `driving-random` generator ([`generate_driving_random_scene`]).
+    DrivingRandom(DrivingRandomParams),
+    /// The `objects-3d` generator ([`generate_objects3d_scene`]).
+    Objects3d(Objects3dParams),
 }
 
 impl PresetParams {
@@ -64,6 +84,8 @@ impl PresetParams {
             PresetParams::Synthetic(p) => p.validate(),
             PresetParams::Hopef(p) => p.validate(),
             PresetParams::Driving(p) => p.validate(),
+            PresetParams::DrivingRandom(p) => p.validate(),
+            PresetParams::Objects3d(p) => p.validate(),
         }
     }
 
@@ -78,6 +100,10 @@ impl PresetParams {
             PresetParams::Synthetic(p) => generate_hopef_scene(p, seed, category, index),
             PresetParams::Hopef(p) => hopef_synth::generate_scene(p, seed, category, index),
             PresetParams::Driving(p) => generate_driving_scene(p, seed, category, index),
+            PresetParams::DrivingRandom(p) => {
+                generate_driving_random_scene(p, seed, category, index)
+            }
+            PresetParams::Objects3d(p) => generate_objects3d_scene(p, seed, category, index),
         }
     }
 
@@ -85,24 +111,26 @@ impl PresetParams {
     pub fn as_synthetic(&self) -> Option<&SyntheticParams> {
         match self {
             PresetParams::Synthetic(p) => Some(p),
-            PresetParams::Hopef(_) | PresetParams::Driving(_) => None,
+            _ => None,
         }
     }
 }
 
 impl Preset {
     /// All presets.
-    pub const ALL: [Preset; 6] = [
+    pub const ALL: [Preset; 8] = [
         Preset::HopefLike,
         Preset::Quick,
         Preset::KittiLike,
         Preset::Hopef,
         Preset::KittiReal,
         Preset::AdelaideLike,
+        Preset::DrivingRandom,
+        Preset::Objects3d,
     ];
 
     /// The preset's name (`hopef-like`, `quick`, `kitti-like`, `hopef`,
-    /// `kitti-real`).
+    /// `kitti-real`, `adelaide-like`, `driving-random`, `objects-3d`).
     pub fn name(self) -> &'static str {
         match self {
             Preset::HopefLike => "hopef-like",
@@ -111,6 +139,8 @@ impl Preset {
             Preset::Hopef => "hopef",
             Preset::KittiReal => "kitti-real",
             Preset::AdelaideLike => "adelaide-like",
+            Preset::DrivingRandom => "driving-random",
+            Preset::Objects3d => "objects-3d",
         }
     }
 
@@ -144,6 +174,10 @@ impl Preset {
             Preset::Hopef => return PresetParams::Hopef(HopefParams::default()),
             Preset::KittiReal => return PresetParams::Driving(DrivingParams::default()),
             Preset::AdelaideLike => return PresetParams::Hopef(Self::adelaide_like_params()),
+            Preset::DrivingRandom => {
+                return PresetParams::DrivingRandom(DrivingRandomParams::default())
+            }
+            Preset::Objects3d => return PresetParams::Objects3d(Objects3dParams::default()),
         })
     }
 
@@ -185,6 +219,8 @@ impl Preset {
             PresetParams::Synthetic(_) => table.try_into().map(PresetParams::Synthetic),
             PresetParams::Hopef(_) => table.try_into().map(PresetParams::Hopef),
             PresetParams::Driving(_) => table.try_into().map(PresetParams::Driving),
+            PresetParams::DrivingRandom(_) => table.try_into().map(PresetParams::DrivingRandom),
+            PresetParams::Objects3d(_) => table.try_into().map(PresetParams::Objects3d),
         }
     }
 
@@ -193,6 +229,7 @@ impl Preset {
         match self {
             Preset::HopefLike | Preset::Hopef | Preset::AdelaideLike => vec![1, 2, 3, 4],
             Preset::Quick | Preset::KittiLike | Preset::KittiReal => vec![1, 2],
+            Preset::DrivingRandom | Preset::Objects3d => vec![0],
         }
     }
 
@@ -202,7 +239,11 @@ impl Preset {
             Preset::HopefLike => 900..=999,
             Preset::Quick => 900..=901,
             Preset::KittiLike => 900..=909,
-            Preset::Hopef | Preset::KittiReal | Preset::AdelaideLike => 0..=999,
+            Preset::Hopef
+            | Preset::KittiReal
+            | Preset::AdelaideLike
+            | Preset::DrivingRandom
+            | Preset::Objects3d => 0..=999,
         }
     }
 

@@ -19,6 +19,12 @@ pub(crate) fn uniform(rng: &mut ChaCha8Rng, [lo, hi]: [f64; 2]) -> f64 {
     }
 }
 
+/// A log-uniform draw from `[lo, hi]`, `0 < lo` (`lo` when the range is
+/// empty): `exp` of a uniform draw from `[ln lo, ln hi]`.
+pub(super) fn log_uniform(rng: &mut ChaCha8Rng, [lo, hi]: [f64; 2]) -> f64 {
+    uniform(rng, [lo.ln(), hi.ln()]).exp().clamp(lo, hi)
+}
+
 /// A uniform count from `[lo, hi]`.
 pub(super) fn uniform_count(rng: &mut ChaCha8Rng, [lo, hi]: [usize; 2]) -> usize {
     rng.gen_range(lo..=hi)

@@ -6,7 +6,7 @@ use std::path::Path;
 
 use nalgebra::{Matrix3, Vector3};
 
-use super::SyntheticScene;
+use super::{write_records_csv, SyntheticScene, RECORDS_FILE};
 use crate::hopef::{CAMERA_FILE, FEATURES_FILE};
 use crate::hopef_synth;
 use crate::npz::{write_npz, NpyArray};
@@ -27,6 +27,10 @@ use crate::DatasetError;
 /// drawn `ratios`, the camera's `R` (Blender's camera-to-world rotation)
 /// and `t` = (0, 0, −d), and one `object_<i>.npz` per object
 /// ([`hopef_synth::layout`]).
+///
+/// Scenes of the randomised families (`driving-random`, `objects-3d`) also
+/// have their drawn difficulty written to `<root>/`[`RECORDS_FILE`]
+/// ([`write_records_csv`]).
 pub fn write_hopef_layout(root: &Path, scenes: &[SyntheticScene]) -> Result<(), DatasetError> {
     write_hopef_layout_with(root, scenes, |_, _| {})
 }
@@ -44,6 +48,7 @@ pub fn write_hopef_layout_with(
         write_hopef_scene(&dir, s)?;
         progress(i + 1, scenes.len());
     }
+    write_records_csv(&root.join(RECORDS_FILE), scenes)?;
     Ok(())
 }
 
