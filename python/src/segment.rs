@@ -43,45 +43,9 @@ use std::fmt::Write as _;
 ///     parameters and the seed only (not on the number of threads).
 /// **params
 ///     Any key of the ``[pipeline]`` table, with the same name and default
-///     (``sctl.default_params()`` lists them); each overrides the profile's:
-///
-///     - method = "baseline"         ("baseline": no focal filter, or "semical")
-///     - num_samples = 3000          (M, minimal samples drawn; the cap with adaptive_batch)
-///     - adaptive_batch = 0          (> 0: batches of this many until a batch gives fewer than adaptive_tolerance N points a better-supported hypothesis)
-///     - adaptive_tolerance = 0.01   (the adaptive stop rule's fraction of the points)
-///     - mss_size = 8                (points per minimal sample)
-///     - thr_px = 2.5                (inlier threshold, px; tau = thr_px**2)
-///     - tau_diff = 0.05             (local test |f1 - f2| / f_avg < tau_diff)
-///     - tau_range = 0.2             (band |f_avg - f_peak| <= tau_range f_peak)
-///     - irls_iters = 5              (IRLS-Tukey iterations)
-///     - irls_fit = "normalized"     (IRLS refit: "normalized" | "plain")
-///     - irls_unit_weight_fallback = True   (False: < 8 positive weights drop the hypothesis)
-///     - irls_sigma_offset_px = 0.0  (sigma = 1.4826 MAD + offset)
-///     - irls_polish = False         (LM polish of each sample's F first)
-///     - refine = True               (IRLS-Tukey refinement of each sample's F)
-///     - eight_point = "normalized"  ("normalized" or "plain")
-///     - minimal_solver = "five-point"  ("five-point", "eight-point", "seven-point" or "six-point-focal")
-///     - minimal_solutions = "best"  ("best": most matches within thr_px, "all", or "best-then-polish": best, five-point roots scored before their polish, or "best-unpolished": as "best-then-polish", the winner left unpolished)
-///     - min_consensus = 0           (solutions with fewer matches within thr_px are dropped before refinement; ignored by "eight-point")
-///     - preselect_matches = 0       (K > 0: a sample's solutions are first scored on K random matches, and only the top ones on all of them; "best" choices only)
-///     - sampling = "uniform"        ("uniform", "localized": the others among the first match's nearest, "mixed": the two in turn, or "guided": mixed, then the uniform turns drawn by the co-inlier counts of the hypotheses so far)
-///     - guided_batch = 100          (samples per batch of "guided"; the first batch is mixed)
-///     - focal_solver = "kocur"      ("kocur" or "bougnoux")
-///     - weight_sets = "adelaidermf" ("adelaidermf", "hopef" or [[w_f1, w_pp1, w_f2, w_pp2], ...])
-///     - max_iters = 100             (iteration cap of the robust focal solver)
-///     - focal_failure = "report"    ("report" or "prior")
-///     - truncate_focals = False     (integer focals, as the reference code)
-///     - local_test = "algorithm1"   ("algorithm1" or "reference-code")
-///     - implausible_focal = "filter"  (f_peak outside 0.3-3 x focal_prior: "filter" or "abstain")
-///     - linkage = "t-linkage"       ("t-linkage" or "j-linkage")
-///     - min_cluster_size = 8        (smaller clusters become outliers)
-///     - size_rule = "min-size"      ("min-size", "largest-gap" or {"relative-min": f})
-///     - final_assignment = "merge"  ("merge": clusters one model explains joined, "none", "refit": refitted cluster models, nearest within thr_px, "merge-refit": merge, then clusters one F refitted on both explains joined, or "merge-anchored": the same, the refit started from the larger cluster's model)
-///     - duplicate_filter = "none"   ("none", or "same-inliers": one hypothesis per distinct inlier set)
-///     - cluster_subset = 0          (> 0: steps 1-9 on this many random matches, the others join the nearest cluster)
-///     - subset_extension = "preference-explained"  ("preference-explained": nearest mean preference vector, within thr_px of that cluster's model; "preference": without that test; "model": nearest cluster model; "preference-refit", "model-refit": as "preference-explained" and "model" with each cluster's model refitted by IRLS on its clustered matches; "neighbours": the label of most of its 5 nearest clustered matches in (x1, y1, x2, y2), within thr_px of that cluster's model)
-///     - recover_outliers = "none"   ("none", or "refit": each outlier joins the refitted cluster model that explains it best within thr_px)
-///     - max_memory_mb = 0           (> 0: refuse a clustering that would need more memory, MB)
+///     (``sctl.default_params()`` lists them); each overrides the profile's.
+///     The key table of the repository's README.md ("Parameter keys") and
+///     the stub ``sctl/__init__.pyi`` list every key.
 ///
 /// Returns
 /// -------
@@ -264,13 +228,6 @@ impl Segmentation {
             segmentation::FocalVerdict::NotEstimated => None,
             v => Some(v.name()),
         }
-    }
-
-    /// True when the focal filter abstained on an implausible consensus
-    /// (``implausible_focal="abstain"``) and kept every refined hypothesis.
-    #[getter]
-    fn focal_abstained(&self) -> bool {
-        self.result.focal_abstained
     }
 
     /// The KDE focal consensus (Eq. 37) as a dict (f_peak, from_median,

@@ -131,9 +131,6 @@ pub fn scene_result(
     let mut status = match &segmentation.degenerate {
         Some(reason) => reason.clone(),
         None if segmentation.consensus_fallback => "ok (focal filter kept all)".to_string(),
-        None if segmentation.focal_abstained => {
-            "ok (focal filter abstained: f_peak implausible)".to_string()
-        }
         None => "ok".to_string(),
     };
     if let Some(k) = known.filter(|k| k.unknown > 0) {
@@ -310,7 +307,6 @@ fn all_outliers(n: usize) -> Segmentation {
         consensus: None,
         consensus_fallback: false,
         focal_verdict: Default::default(),
-        focal_abstained: false,
         clusters: Vec::new(),
         clusters_before_filter: 0,
         timings: StageTimings::default(),

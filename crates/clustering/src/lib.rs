@@ -13,8 +13,7 @@
 //!   (Eq. 40), lazy-deletion min-heap (Section 6.3), stop at `d ≥ 1`;
 //!   clusters smaller than `min_cluster_size` become outliers (label −1).
 //! * [`SizeRule`]: which clusters are kept (step 9) — `min_cluster_size`
-//!   alone, T-Linkage's largest size gap ([`largest_gap_cut`]), or a
-//!   minimum relative to N; [`cluster_with_rule`], [`ClusteringParams::cluster`].
+//!   alone or a minimum relative to N; [`cluster_with_rule`], [`ClusteringParams::cluster`].
 //! * [`required_memory`]: the memory estimate behind
 //!   [`ClusteringParams::max_memory_bytes`] and [`ClusteringParams::check_memory`].
 //! * [`j_linkage`]: the same with binary preferences `r ≤ τ`, Jaccard
@@ -60,7 +59,7 @@ pub use preference::{
     binary_preference, preference, BinaryPreferenceMatrix, Linkage, PreferenceBuilder,
     PreferenceMatrix, Preferences, PREFERENCE_CUTOFF,
 };
-pub use size_rule::{largest_gap_cut, SizeRule};
+pub use size_rule::SizeRule;
 pub use tlinkage::t_linkage;
 
 use serde::{Deserialize, Serialize};

@@ -252,7 +252,7 @@ pub(crate) fn labels_from_merges(
     for &r in &root {
         size[r] += 1;
     }
-    let min_size = rule.min_size(&size, n, min_cluster_size);
+    let min_size = rule.min_size(n, min_cluster_size);
     let mut new_id = vec![-1i32; n];
     let mut clusters_before_filter = 0;
     let mut clusters_after_filter = 0;

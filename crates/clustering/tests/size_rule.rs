@@ -1,59 +1,36 @@
-//! The rules that keep clusters (docs/method.md step 9): the size-gap cut of
-//! T-Linkage on hand-made size lists, the relative minimum, the default
-//! being the former behaviour bit for bit; and the memory bound.
+//! The rules that keep clusters (docs/method.md step 9): the relative
+//! minimum, the default being the former behaviour bit for bit; and the
+//! memory bound.
 
 use clustering::{
-    cluster, cluster_with_rule, largest_gap_cut, reference, t_linkage, ClusteringError,
+    cluster, cluster_with_rule, reference, t_linkage, ClusteringError,
     ClusteringParams, Linkage, PreferenceMatrix, Preferences, SizeRule,
 };
 
 #[test]
-fn largest_gap_cuts_at_the_largest_ratio() {
-    // Background, two movers, fragments and lone outliers.
-    let mut sizes = vec![3000, 800, 600, 20, 15, 10];
-    sizes.extend([1; 50]);
-    assert_eq!(largest_gap_cut(&sizes), 600);
-    // The order of the input does not matter.
-    sizes.reverse();
-    assert_eq!(largest_gap_cut(&sizes), 600);
-    // A difference cut would keep only the background (3000 − 500 is the
-    // largest difference); the ratio 480 / 20 keeps the movers.
-    assert_eq!(largest_gap_cut(&[3000, 500, 480, 20, 1, 1]), 480);
-    // Large clusters only: the virtual lone outlier keeps them all.
-    assert_eq!(largest_gap_cut(&[100, 90, 80]), 80);
-    // Equal ratios: the cut keeps the most clusters.
-    assert_eq!(largest_gap_cut(&[8, 4, 2]), 2);
-    assert_eq!(largest_gap_cut(&[1, 1, 1]), 1);
-    assert_eq!(largest_gap_cut(&[]), 0);
-    assert_eq!(largest_gap_cut(&[0, 0]), 0);
-}
-
-#[test]
 fn every_rule_keeps_min_cluster_size_as_a_floor() {
-    let sizes = [100, 50, 3, 1];
-    assert_eq!(SizeRule::MinSize.min_size(&sizes, 154, 8), 8);
-    assert_eq!(SizeRule::LargestGap.min_size(&sizes, 154, 8), 50);
-    assert_eq!(SizeRule::LargestGap.min_size(&sizes, 154, 60), 60);
-    assert_eq!(SizeRule::RelativeMin(0.01).min_size(&sizes, 5000, 8), 50);
-    assert_eq!(SizeRule::RelativeMin(0.001).min_size(&sizes, 5000, 8), 8);
-    assert_eq!(SizeRule::RelativeMin(f64::NAN).min_size(&sizes, 5000, 8), 8);
-    assert_eq!(SizeRule::RelativeMin(-1.0).min_size(&sizes, 5000, 8), 8);
+    assert_eq!(SizeRule::MinSize.min_size(154, 8), 8);
+    assert_eq!(SizeRule::MinSize.min_size(154, 60), 60);
+    assert_eq!(SizeRule::RelativeMin(0.01).min_size(5000, 8), 50);
+    assert_eq!(SizeRule::RelativeMin(0.001).min_size(5000, 8), 8);
+    assert_eq!(SizeRule::RelativeMin(f64::NAN).min_size(5000, 8), 8);
+    assert_eq!(SizeRule::RelativeMin(-1.0).min_size(5000, 8), 8);
 }
 
 #[test]
 fn rules_serialise_in_kebab_case() {
     for (text, rule) in [
         (r#""min-size""#, SizeRule::MinSize),
-        (r#""largest-gap""#, SizeRule::LargestGap),
         (r#"{"relative-min":0.01}"#, SizeRule::RelativeMin(0.01)),
     ] {
         assert_eq!(serde_json::from_str::<SizeRule>(text).unwrap(), rule);
         assert_eq!(serde_json::to_string(&rule).unwrap(), text);
     }
-    assert!(serde_json::from_str::<SizeRule>(r#""largest_gap""#).is_err());
+    assert!(serde_json::from_str::<SizeRule>(r#""min_size""#).is_err());
+    assert!(serde_json::from_str::<SizeRule>(r#""largest-gap""#).is_err());
     let p: ClusteringParams =
-        serde_json::from_str(r#"{"size_rule": "largest-gap", "max_memory_bytes": 1000}"#).unwrap();
-    assert_eq!(p.size_rule, SizeRule::LargestGap);
+        serde_json::from_str(r#"{"size_rule": "min-size", "max_memory_bytes": 1000}"#).unwrap();
+    assert_eq!(p.size_rule, SizeRule::MinSize);
     assert_eq!(p.max_memory_bytes, Some(1000));
     assert_eq!(p.min_cluster_size, 8);
 }
@@ -74,10 +51,11 @@ fn blocks(sizes: &[usize]) -> PreferenceMatrix {
 }
 
 #[test]
-fn largest_gap_drops_the_fragments_of_a_clustering() {
+fn relative_min_drops_the_fragments_of_a_clustering() {
     let p = blocks(&[40, 30, 3, 2]);
     let prefs = Preferences::Continuous(p.clone());
-    let gap = cluster_with_rule(&prefs, SizeRule::LargestGap, 1);
+    // A relative minimum of 10 % of N = 75 keeps clusters of >= 8 points.
+    let gap = cluster_with_rule(&prefs, SizeRule::RelativeMin(0.1), 1);
     let expected: Vec<i32> = [(0, 40), (1, 30), (-1, 5)]
         .iter()
         .flat_map(|&(label, count)| std::iter::repeat(label).take(count))
@@ -91,9 +69,6 @@ fn largest_gap_drops_the_fragments_of_a_clustering() {
     let all = t_linkage(&p, 1);
     assert_eq!(gap.merges, all.merges);
     assert_eq!(all.clusters_after_filter, 4);
-    // A relative minimum of 10 % of N = 75 keeps clusters of >= 8 points.
-    let relative = cluster_with_rule(&prefs, SizeRule::RelativeMin(0.1), 1);
-    assert_eq!(relative.labels, expected);
 }
 
 #[test]
@@ -110,13 +85,13 @@ fn the_default_rule_is_the_former_filter() {
     assert_eq!(c.clusters_after_filter, 4);
     assert_eq!(params.try_cluster(&prefs).unwrap(), c);
     assert_eq!(params.try_cluster_owned(prefs.clone()).unwrap(), c);
-    let largest_gap = ClusteringParams {
-        size_rule: SizeRule::LargestGap,
+    let relative = ClusteringParams {
+        size_rule: SizeRule::RelativeMin(0.2),
         ..params
     };
     assert_eq!(
-        largest_gap.try_cluster_owned(prefs.clone()).unwrap(),
-        largest_gap.try_cluster(&prefs).unwrap()
+        relative.try_cluster_owned(prefs.clone()).unwrap(),
+        relative.try_cluster(&prefs).unwrap()
     );
 }
 

@@ -5,8 +5,8 @@
 //! * IRLS-Tukey refinement from an 8-point sample at N = 300 (step 3), the
 //!   text's variant and the reference code's (plain refit, polish);
 //! * the three 8-point variants on a minimal sample (step 2);
-//! * the minimal solvers (5-point E, 6-point shared focal, 7-point F) on
-//!   noisy minimal samples, one sample per call.
+//! * the minimal solver (5-point E) on noisy minimal samples, one sample
+//!   per call.
 //!
 //! Run with `cargo bench -p geometry --bench geometry`.
 
@@ -16,8 +16,8 @@ mod common;
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use geometry::{
     eight_point_normalized, eight_point_plain, eight_point_weighted, five_point, refine_irls_tukey,
-    sampson_consensus, sampson_distances_squared, sampson_residuals_signed, seven_point,
-    six_point_focal, Correspondences, IrlsParams, IrlsWorkspace,
+    sampson_consensus, sampson_distances_squared, sampson_residuals_signed, Correspondences,
+    IrlsParams, IrlsWorkspace,
 };
 use nalgebra::Vector3;
 use rand::SeedableRng;
@@ -169,29 +169,11 @@ fn minimal_solvers(c: &mut Criterion) {
                 .unzip()
         })
         .collect();
-    let six: Vec<_> = samples
-        .iter()
-        .map(|s| s.points.subset(&[0, 1, 2, 3, 4, 5]).unwrap())
-        .collect();
     let mut k = 0;
     group.bench_function("five_point", |b| {
         b.iter(|| {
             k = (k + 1) % bearings.len();
             five_point(black_box(&bearings[k].0), black_box(&bearings[k].1))
-        })
-    });
-    let mut k = 0;
-    group.bench_function("six_point_focal", |b| {
-        b.iter(|| {
-            k = (k + 1) % six.len();
-            six_point_focal(black_box(&six[k]))
-        })
-    });
-    let mut k = 0;
-    group.bench_function("seven_point", |b| {
-        b.iter(|| {
-            k = (k + 1) % samples.len();
-            seven_point(black_box(&samples[k].points))
         })
     });
     group.finish();

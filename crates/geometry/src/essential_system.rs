@@ -241,7 +241,8 @@ fn evaluate_kernel(system: &EssentialSystem, p: [f64; 3]) -> [(f64, [f64; 3], f6
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::poly::{det, mat_mul, trace_constraint, transpose, Poly3, PolyMatrix};
+    use crate::dense_poly::{det, mat_mul, trace_constraint, transpose, Poly3, PolyMatrix};
+    use crate::poly::Equations;
 
     /// [`evaluate_kernel`]'s products formed by nalgebra instead, as the
     /// kernel's comment describes them.

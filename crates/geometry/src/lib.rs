@@ -11,12 +11,9 @@
 //! * [`polish`]: the reference code's nonlinear polish of a sample's F
 //!   (PoseLib's `refine_fundamental`: Levenberg–Marquardt on the
 //!   Cauchy-robust Sampson error).
-//! * [`five_point`], [`six_point_focal`], [`seven_point`]: minimal
-//!   relative-pose solvers for hypothesis generation, returning every real
-//!   solution — essential matrices from 5 calibrated bearings (Nistér 2004),
-//!   `(f, F)` with one focal shared by both views from 6 centred pixel
-//!   matches (Stewénius et al. 2008), fundamental matrices from 7 pixel
-//!   matches (Hartley & Zisserman §11.1.2).
+//! * [`five_point`]: the minimal relative-pose solver for hypothesis
+//!   generation, returning every real essential matrix from 5 calibrated
+//!   bearings (Nistér 2004).
 //!
 //! Convention everywhere: a match (x1 ↔ x2) satisfies `x2ᵀ F x1 = 0`, with
 //! homogeneous pixel coordinates `x = (x, y, 1)`, `F` stored row-major in
@@ -24,9 +21,10 @@
 
 #![warn(missing_docs)]
 
-mod action;
 pub mod eight_point;
 pub mod error;
+#[cfg(test)]
+mod dense_poly;
 mod essential_system;
 pub mod five_point;
 pub mod irls;
@@ -37,9 +35,7 @@ mod minimal;
 pub mod polish;
 mod poly;
 pub mod sampson;
-pub mod seven_point;
 mod simd;
-pub mod six_point_focal;
 mod sturm;
 pub mod types;
 
@@ -59,6 +55,4 @@ pub use sampson::{
     sampson_distance_squared, sampson_distances_squared, sampson_residuals_signed,
     symmetric_epipolar_distance, SampsonModels,
 };
-pub use seven_point::{seven_point, SEVEN_POINT_SAMPLE};
-pub use six_point_focal::{six_point_focal, FocalSolution, SIX_POINT_SAMPLE};
 pub use types::{Correspondences, FundamentalMatrix};

@@ -1,7 +1,7 @@
 //! Steps 5–6 of Algorithm 1: the local test (Eq. 36), the KDE focal
 //! consensus and its band (Eq. 37), and the plausibility of the consensus.
 
-use crate::{FocalVerdict, Hypothesis, HypothesisStatus, ImplausibleFocal, LocalTest, Params};
+use crate::{FocalVerdict, Hypothesis, HypothesisStatus, LocalTest, Params};
 use focal::{ConsensusParams, FocalConsensus};
 
 /// The plausible scene focals relative to the focal prior `max(W, H)`:
@@ -31,11 +31,9 @@ pub struct FilterOutcome {
     pub fallback: bool,
     /// Hypotheses that passed the local test (Eq. 36).
     pub local_ok: usize,
-    /// Whether the consensus is plausible ([`focal_verdict`]).
+    /// Whether the consensus is plausible ([`focal_verdict`]); the filter
+    /// applies the band either way (the thesis), the verdict is reported.
     pub verdict: FocalVerdict,
-    /// True when the filter abstained on an implausible consensus
-    /// ([`ImplausibleFocal::Abstain`]) and kept every refined hypothesis.
-    pub abstained: bool,
 }
 
 /// `f_avg = (f1 + f2) / 2` (Eq. 36).
@@ -54,9 +52,8 @@ fn f_avg((f1, f2): (f64, f64)) -> f64 {
 ///   `f_avg`; the pool's hypotheses with `|f_avg − f_peak| ≤ τ_range f_peak`
 ///   are kept.
 /// - When nothing is kept, every refined hypothesis is (the fallback).
-/// - With [`ImplausibleFocal::Abstain`], an f_peak outside
-///   [`PLAUSIBLE_FOCAL_RANGE`] times `focal_prior` keeps every refined
-///   hypothesis too (the baseline's hypotheses).
+/// - The verdict on f_peak against [`PLAUSIBLE_FOCAL_RANGE`] times
+///   `focal_prior` is reported, and changes nothing.
 pub fn focal_filter(
     hypotheses: &mut [Hypothesis],
     refined: &[usize],
@@ -88,10 +85,8 @@ pub fn focal_filter(
         .collect();
     let consensus = focal::focal_consensus(&values, &ConsensusParams::default());
     let verdict = focal_verdict(consensus.as_ref(), focal_prior);
-    let abstained = verdict == FocalVerdict::Implausible
-        && params.implausible_focal == ImplausibleFocal::Abstain;
     let mut kept = 0;
-    if let Some(c) = consensus.as_ref().filter(|_| !abstained) {
+    if let Some(c) = consensus.as_ref() {
         for &j in &pool {
             let Some(focals) = hypotheses[j].focals else {
                 continue;
@@ -105,8 +100,8 @@ pub fn focal_filter(
             };
         }
     }
-    let fallback = kept == 0 && !abstained;
-    if kept == 0 {
+    let fallback = kept == 0;
+    if fallback {
         for &j in refined {
             hypotheses[j].status = HypothesisStatus::Kept;
         }
@@ -116,7 +111,6 @@ pub fn focal_filter(
         fallback,
         local_ok: local_ok.len(),
         verdict,
-        abstained,
     }
 }
 
@@ -191,7 +185,7 @@ mod tests {
     }
 
     #[test]
-    fn an_implausible_consensus_filters_or_abstains() {
+    fn an_implausible_consensus_filters_all_the_same() {
         // A consensus at 10 px for a prior of 1000 px: outside [300, 3000].
         let focals = [(10.0, 10.1), (10.1, 10.0), (10.0, 10.0), (900.0, 905.0)];
         let fresh = || -> Vec<Hypothesis> { focals.iter().map(|&f| hyp(Some(f))).collect() };
@@ -200,24 +194,12 @@ mod tests {
         let mut hs = fresh();
         let out = focal_filter(&mut hs, &refined, &filter, 1000.0);
         assert_eq!(out.verdict, FocalVerdict::Implausible);
-        assert!(!out.abstained && !out.fallback);
+        assert!(!out.fallback);
         assert_eq!(hs[3].status, OutsideBand);
+        assert!(hs[..3].iter().all(|h| h.status == Kept));
         // The same consensus is plausible for a prior of 30 px.
         let out = focal_filter(&mut fresh(), &refined, &filter, 30.0);
         assert_eq!(out.verdict, FocalVerdict::Plausible);
-        let abstain = Params {
-            implausible_focal: ImplausibleFocal::Abstain,
-            ..Params::default()
-        };
-        let mut hs = fresh();
-        let out = focal_filter(&mut hs, &refined, &abstain, 1000.0);
-        assert!(out.abstained && !out.fallback);
-        assert!(hs.iter().all(|h| h.status == Kept));
-        // Abstention needs an implausible consensus.
-        let mut hs = fresh();
-        let out = focal_filter(&mut hs, &refined, &abstain, 30.0);
-        assert!(!out.abstained);
-        assert_eq!(hs[3].status, OutsideBand);
     }
 
     #[test]

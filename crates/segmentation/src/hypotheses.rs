@@ -1,9 +1,7 @@
 //! Steps 1–3 of Algorithm 1: minimal samples, their fits (8-point, or
 //! another minimal solver) and the IRLS-Tukey refinement of each.
 
-use crate::adaptive::{stop_after, SupportTracker};
-use crate::minimal::{solve_and_choose, ScoringSet};
-use crate::subset::sorted_draw;
+use crate::minimal::solve_and_choose;
 use crate::{
     subset_indices, CoInlierKernel, CoInliers, EightPoint, Matches, MinimalSampler, MinimalSolver,
     Params, Sampling, SegmentationError,
@@ -28,15 +26,11 @@ pub struct GeneratedHypotheses {
     /// them unless [`Params::cluster_subset`] is smaller than N
     /// ([`crate::subset_indices`]).
     pub subset: Vec<usize>,
-    /// Whether hypothesis `j`'s minimal sample gave a fit. With the
-    /// 8-point (or one solution per sample) hypothesis `j` is sample `j`;
-    /// with `minimal_solutions = "all"` a sample gives one hypothesis per
-    /// solution, or one unfitted hypothesis when it has none.
+    /// Whether hypothesis `j`'s minimal sample (sample `j`) gave a fit.
     pub fitted: Vec<bool>,
     /// The model of hypothesis `j` (refined, or the raw fit when `refine`
     /// is off), centred coordinates; None when the fit or the refinement
-    /// failed, or the fit explained fewer than [`Params::min_consensus`]
-    /// matches.
+    /// failed.
     pub models: Vec<Option<Matrix3<f64>>>,
     /// Wall time of steps 1–2, seconds.
     pub sampling_seconds: f64,
@@ -78,9 +72,8 @@ pub fn centred_points(
 /// Steps 1–3 of Algorithm 1 (see [`GeneratedHypotheses`]): samples drawn
 /// by a [`MinimalSampler`] built once for the scene, hypotheses in
 /// parallel in the caller's rayon pool; the result does not depend on the
-/// number of threads. With [`Params::adaptive_batch`] the samples come in
-/// batches until the stop rule of [`SupportTracker`] holds (its cost is
-/// counted in the refinement time).
+/// number of threads. Guided sampling draws in batches of
+/// [`Params::guided_batch`], each guided by the hypotheses before it.
 ///
 /// Errors on invalid parameters or camera fields, fewer points than
 /// `mss_size` and non-finite coordinates.
@@ -100,23 +93,16 @@ pub fn generate_hypotheses(
         (points, Cow::Owned(pixels1))
     };
     let sampler = MinimalSampler::new(&pixels1, params.sampling, params.sample_size());
-    let preselect = preselect_subset(&points, params)?;
-    let scoring = ScoringSet {
-        points: &points,
-        preselect: preselect.as_ref(),
-    };
     let guided = params.sampling == Sampling::Guided;
-    let batch = match params.adaptive_batch {
-        0 if guided => params.guided_batch,
-        0 => params.num_samples,
-        b => b,
+    let batch = if guided {
+        params.guided_batch
+    } else {
+        params.num_samples
     };
     let mut co_inliers = guided.then(|| CoInliers::new(points.len(), params.num_samples));
-    let mut tracker =
-        (params.adaptive_batch > 0).then(|| SupportTracker::new(points.len(), params.thr_px));
     let (mut fitted, mut models) = (Vec::new(), Vec::new());
     let (mut sampling_seconds, mut refine_seconds) = (0.0, 0.0);
-    for (b, start) in (0..params.num_samples).step_by(batch).enumerate() {
+    for start in (0..params.num_samples).step_by(batch) {
         let samples = start..(start + batch).min(params.num_samples);
         let t = Instant::now();
         let draw = Draw {
@@ -129,7 +115,9 @@ pub fn generate_hypotheses(
         };
         let fits = match params.minimal_solver {
             MinimalSolver::EightPoint => fit_minimal_samples(&points, draw, samples, params),
-            _ => solve_minimal_samples(scoring, draw, samples, params, matches.focal_prior),
+            MinimalSolver::FivePoint => {
+                solve_minimal_samples(&points, draw, samples, params, matches.focal_prior)
+            }
         };
         if let Some(co) = co_inliers.as_mut() {
             for fit in &fits {
@@ -140,13 +128,9 @@ pub fn generate_hypotheses(
 
         let t = Instant::now();
         let refined = refine_fits(&points, &fits, params);
-        let gained = tracker.as_mut().map(|t| t.add_batch(&points, &refined));
         refine_seconds += t.elapsed().as_secs_f64();
         fitted.extend(fits.iter().map(Option::is_some));
         models.extend(refined);
-        if gained.is_some_and(|g| stop_after(b, g, points.len(), params.adaptive_tolerance)) {
-            break;
-        }
     }
     Ok(GeneratedHypotheses {
         points,
@@ -158,27 +142,9 @@ pub fn generate_hypotheses(
     })
 }
 
-/// The matches of [`Params::preselect_matches`]: that many of `points`,
-/// drawn uniformly from stream 2⁶⁴ − 2 of [`crate::hypothesis_rng`] (no hypothesis
-/// draws from it, nor does [`subset_indices`]); `None` when the key is 0 or
-/// not below the number of points.
-fn preselect_subset(
-    points: &Correspondences,
-    params: &Params,
-) -> Result<Option<Correspondences>, SegmentationError> {
-    let (n, size) = (points.len(), params.preselect_matches);
-    if size == 0 || size >= n {
-        return Ok(None);
-    }
-    points
-        .subset(&sorted_draw(params.seed, usize::MAX - 1, n, size))
-        .map(Some)
-        .map_err(SegmentationError::InvalidPoints)
-}
-
 /// A minimal sample's fit and the matches its refinement starts from: the
 /// sample itself for the 8-point, the matches within `thr_px` of the fit
-/// for the smaller minimal solvers (a weighted 8-point needs 8).
+/// for the five-point (a weighted 8-point needs 8).
 struct SampleFit {
     start: Vec<usize>,
     f: Matrix3<f64>,
@@ -224,78 +190,50 @@ fn fit_minimal_samples(
         .collect()
 }
 
-/// Steps 1–2 with a minimal solver other than the 8-point: each sample's
-/// solutions, chosen by [`Params::minimal_solutions`]; a sample without a
-/// solution gives one unfitted hypothesis. `focal` is the five-point's
-/// `K(f)`.
+/// Steps 1–2 with the five-point solver: each sample's solution, chosen by
+/// [`Params::minimal_solutions`] (None when the sample has none). `focal`
+/// is the five-point's `K(f)`.
 fn solve_minimal_samples(
-    scoring: ScoringSet,
+    points: &Correspondences,
     draw: Draw,
     samples: Range<usize>,
     params: &Params,
     focal: f64,
 ) -> Vec<Option<SampleFit>> {
     let size = params.sample_size();
-    let per_sample: Vec<Vec<Option<SampleFit>>> = samples
+    samples
         .into_par_iter()
         .map(|j| {
             let sample = draw.sample(params.seed, j, size);
-            let chosen = match scoring.points.subset(&sample) {
-                Ok(subset) => solve_and_choose(
-                    params.minimal_solver,
-                    params.minimal_solutions,
-                    &subset,
-                    scoring,
-                    focal,
-                    params.thr_px,
-                ),
-                Err(_) => Vec::new(),
-            };
-            if chosen.is_empty() {
-                return vec![None];
-            }
-            chosen
-                .into_iter()
-                .map(|c| {
-                    Some(SampleFit {
-                        start: c.consensus,
-                        f: c.f,
-                    })
-                })
-                .collect()
+            let subset = points.subset(&sample).ok()?;
+            let chosen = solve_and_choose(
+                params.minimal_solutions,
+                &subset,
+                points,
+                focal,
+                params.thr_px,
+            )?;
+            Some(SampleFit {
+                start: chosen.consensus,
+                f: chosen.f,
+            })
         })
-        .collect();
-    per_sample.into_iter().flatten().collect()
+        .collect()
 }
 
-/// The fit, unless its consensus set is smaller than
-/// [`Params::min_consensus`] (which the 8-point's fits, started from their
-/// sample, ignore).
-fn kept<'a>(fit: &'a Option<SampleFit>, params: &Params) -> Option<&'a SampleFit> {
-    fit.as_ref().filter(|fit| {
-        params.minimal_solver == MinimalSolver::EightPoint
-            || fit.start.len() >= params.min_consensus
-    })
-}
-
-/// Step 3: IRLS-Tukey from each fit (or the raw fit when `refine` is off);
-/// a minimal solution whose consensus set is smaller than
-/// [`Params::min_consensus`] is dropped first.
+/// Step 3: IRLS-Tukey from each fit (or the raw fit when `refine` is off).
 fn refine_fits(
     points: &Correspondences,
     fits: &[Option<SampleFit>],
     params: &Params,
 ) -> Vec<Option<Matrix3<f64>>> {
     if !params.refine {
-        return fits
-            .iter()
-            .map(|fit| kept(fit, params).map(|s| s.f))
-            .collect();
+        return fits.iter().map(|fit| fit.as_ref().map(|s| s.f)).collect();
     }
     let irls = params.irls();
     fits.par_iter()
         .map_init(IrlsWorkspace::new, |ws, fit| {
-            let fit = kept(fit, params)?;
+            let fit = fit.as_ref()?;
             let refined = ws.run(points, &fit.start, Some(&fit.f), &irls).ok()?;
             Some(refined.f)
         })

@@ -9,9 +9,9 @@
 //!
 //! 1. M minimal samples, drawn per hypothesis from its own random stream,
 //!    uniformly ([`minimal_sample`]), localized ([`MinimalSampler`]) or
-//!    guided by the hypotheses so far ([`CoInlierKernel`]), M fixed or
-//!    adaptive ([`SupportTracker`]);
-//! 2. the 8-point F of each (Hartley-normalised or plain, [`EightPoint`]);
+//!    guided by the hypotheses so far ([`CoInlierKernel`]);
+//! 2. the 8-point F of each (Hartley-normalised or plain, [`EightPoint`]),
+//!    or the five-point E at the focal prior ([`MinimalSolver`]);
 //! 3. IRLS-Tukey refinement ([`generate_hypotheses`]);
 //! 4. focal lengths of each F ([`estimate_hypothesis_focals`]: the robust
 //!    Kocur–Kyselica–Kukelova solver or Bougnoux's formula, or answers
@@ -20,16 +20,11 @@
 //!    (Eq. 37) ([`focal_filter`]) — the `semical` method; the `baseline`
 //!    keeps every refined hypothesis;
 //! 7. preferences (Eq. 38), 8. T-Linkage (Eqs. 39–40) or J-Linkage and
-//! 9. the size filter ([`segment_with`]), optionally followed by a final
-//!    assignment to refitted cluster models ([`reassign`]), merges of the
-//!    clusters one model explains ([`merge_explained`], [`merge_refitted`],
-//!    [`merge_anchored`]) and the outliers' recovery by refitted cluster
-//!    models ([`recover_outliers`]). On a large
+//! 9. the size filter ([`segment_with`]), optionally followed by merges of
+//!    the clusters one model explains ([`merge_explained`]). On a large
 //!    scene steps 1–9 may run on a random subset of the matches, the
-//!    others joining the clusters afterwards ([`extend_labels`]: by
-//!    preference, by sampled or refitted cluster models
-//!    ([`refitted_cluster_models`]) or by their nearest clustered
-//!    neighbours ([`EXTENSION_NEIGHBOURS`])).
+//!    others joining the clusters afterwards by preference, optionally
+//!    checked against each cluster's model ([`extend_labels`]).
 //!
 //! All geometry runs in principal-point-centred pixel coordinates: every F
 //! of a [`Segmentation`] satisfies `x2ᵀ F x1 = 0` for
@@ -37,7 +32,6 @@
 //! parameters and [`Params::seed`] only, not on the number of threads
 //! (hypotheses are computed in the caller's rayon pool).
 
-mod adaptive;
 mod assignment;
 mod error;
 mod filter;
@@ -47,9 +41,7 @@ mod hypotheses;
 mod input;
 mod mean_preference;
 mod merge;
-mod merge_refit;
 mod minimal;
-mod neighbours;
 mod params;
 mod profile;
 mod result;
@@ -59,8 +51,6 @@ mod subset;
 mod variants;
 mod weight_sets;
 
-pub use adaptive::{SupportTracker, SUPPORT_GAIN};
-pub use assignment::{reassign, recover_outliers, CLUSTER_REFIT_ITERS};
 pub use error::SegmentationError;
 pub use filter::{focal_filter, focal_verdict, FilterOutcome, PLAUSIBLE_FOCAL_RANGE};
 pub use focal::FocalConsensus;
@@ -71,13 +61,10 @@ pub use guided::{CoInlierKernel, CoInliers};
 pub use hypotheses::{centred_points, generate_hypotheses, GeneratedHypotheses};
 pub use input::{image_centre, Matches};
 pub use merge::{merge_explained, InlierBits, MERGE_SHARE};
-pub use merge_refit::{merge_anchored, merge_refitted};
-pub use neighbours::EXTENSION_NEIGHBOURS;
 pub use params::{
-    DuplicateFilter, EightPoint, FinalAssignment, FocalKey, FocalSolver, HypothesisKey,
-    ImplausibleFocal, IrlsFit, Linkage, LocalTest, Method, MinimalSolutions, MinimalSolver,
-    OnFailure, ParamError, Params, RecoverOutliers, Sampling, SizeRule, SubsetExtension,
-    WeightPreset, WeightSets, PARAM_KEYS,
+    EightPoint, FinalAssignment, FocalKey, FocalSolver, HypothesisKey, IrlsFit, Linkage,
+    LocalTest, Method, MinimalSolutions, MinimalSolver, OnFailure, ParamError, Params, Sampling,
+    SizeRule, SubsetExtension, WeightPreset, WeightSets, PARAM_KEYS,
 };
 pub use profile::Profile;
 pub use result::{
@@ -88,4 +75,4 @@ pub use sampling::{
     hypothesis_rng, minimal_sample, neighbourhood_size, splitmix64, MinimalSampler,
 };
 pub use segment::{fit_cluster, segment, segment_with};
-pub use subset::{extend_labels, refitted_cluster_models, subset_indices, ClusteredSubset};
+pub use subset::{extend_labels, subset_indices, ClusteredSubset};

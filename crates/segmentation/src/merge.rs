@@ -114,7 +114,7 @@ pub fn merge_explained(labels: &[i32], clusters: usize, inliers: &InlierBits) ->
 
 /// The clusters (indices of `members`) from the largest down, the lower
 /// index on ties: the order in which the merges visit them.
-pub(crate) fn largest_first(members: &[Vec<usize>]) -> Vec<usize> {
+fn largest_first(members: &[Vec<usize>]) -> Vec<usize> {
     let mut order: Vec<usize> = (0..members.len()).collect();
     order.sort_by_key(|&c| (std::cmp::Reverse(members[c].len()), c));
     order
@@ -123,7 +123,7 @@ pub(crate) fn largest_first(members: &[Vec<usize>]) -> Vec<usize> {
 /// `labels` with each cluster `l` replaced by `target[l]` (every target
 /// `< target.len()`), then renumbered 0, 1, … by first appearance;
 /// outliers and labels out of range stay −1.
-pub(crate) fn apply_merges(labels: &[i32], target: &[usize]) -> Vec<i32> {
+fn apply_merges(labels: &[i32], target: &[usize]) -> Vec<i32> {
     let merged: Vec<i32> = labels
         .iter()
         .map(|&l| match usize::try_from(l) {

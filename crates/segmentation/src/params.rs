@@ -13,8 +13,8 @@ use geometry::IrlsParams;
 use thiserror::Error;
 
 pub use crate::variants::{
-    DuplicateFilter, EightPoint, FinalAssignment, FocalSolver, ImplausibleFocal, LocalTest, Method,
-    MinimalSolutions, MinimalSolver, RecoverOutliers, Sampling, SubsetExtension,
+    EightPoint, FinalAssignment, FocalSolver, LocalTest, Method, MinimalSolutions, MinimalSolver,
+    Sampling, SubsetExtension,
 };
 pub use crate::weight_sets::{WeightPreset, WeightSets};
 
@@ -55,16 +55,6 @@ pub struct Params {
     pub method: Method,
     /// M, the number of minimal sample sets drawn (step 1). Table 1: 3000.
     pub num_samples: usize,
-    /// Adaptive M (step 1): `0` draws all `num_samples` samples; `B > 0`
-    /// draws them in batches of B and stops after the first batch, from the
-    /// second on, in which fewer than `adaptive_tolerance · N` points gained
-    /// a better-supported hypothesis ([`crate::SupportTracker`]); at most
-    /// `num_samples` in all. The hypotheses drawn are the first ones of the
-    /// fixed-M run. Default 0 (fixed M, the thesis).
-    pub adaptive_batch: usize,
-    /// The adaptive stop rule's tolerance, a fraction of the points in
-    /// `[0, 1]`. Default 0.01.
-    pub adaptive_tolerance: f64,
     /// Correspondences per minimal sample set (step 1). Table 1: 8.
     pub mss_size: usize,
     /// Inlier threshold in pixels: IRLS inlier bound `thr_px²` (step 3e) and
@@ -103,50 +93,30 @@ pub struct Params {
     /// 8-point variant (step 2): `normalized` (text) or `plain` (reference
     /// code). Default `normalized`.
     pub eight_point: EightPoint,
-    /// Minimal solver of step 2: `eight-point` (the thesis), `seven-point`,
-    /// `five-point` (essential matrices at the focal prior) or
-    /// `six-point-focal` (shared unknown focal). The last three draw their
-    /// own sample size; `mss_size` applies to `eight-point`. Refinement
-    /// (step 3) starts from the matches within `thr_px` of the chosen
-    /// solution instead of the sample. Default `five-point` (the thesis:
+    /// Minimal solver of step 2: `eight-point` (the thesis) or `five-point`
+    /// (essential matrices at the focal prior, samples of 5; `mss_size`
+    /// applies to `eight-point`). The five-point's refinement (step 3)
+    /// starts from the matches within `thr_px` of the chosen solution
+    /// instead of the sample. Default `five-point` (the thesis:
     /// `eight-point`).
     pub minimal_solver: MinimalSolver,
-    /// Which solutions of a minimal sample become hypotheses: `best` (most
-    /// matches within `thr_px`), `all`, `best-then-polish` (`best`
-    /// scored on the five-point roots before their polish, the winner
-    /// alone polished) or `best-unpolished` (the winner left unpolished,
-    /// with the consensus set it was scored with). Ignored by
-    /// `eight-point`, which has one. Default `best`.
+    /// Which solution of a five-point sample becomes its hypothesis: `best`
+    /// (most matches within `thr_px`) or `best-unpolished` (the same scored
+    /// on the roots before their polish, the winner left unpolished, with
+    /// the consensus set it was scored with). Ignored by `eight-point`,
+    /// which has one. Default `best`.
     pub minimal_solutions: MinimalSolutions,
-    /// A minimal solution with fewer matches within `thr_px` than this is
-    /// dropped before its refinement (step 3) and gives no hypothesis: the
-    /// hypotheses of samples that mix motions or hold outliers rarely
-    /// explain many matches, and each one dropped saves its refinement,
-    /// its preference column and its share of the clustering. Ignored by
-    /// `eight-point`, whose refinement starts from its sample. A solution
-    /// with fewer than 8 such matches is never refined (the weighted
-    /// 8-point needs 8), so values up to 8 change nothing. Default 0.
-    pub min_consensus: usize,
-    /// Which of a sample's solutions compete for `best`,
-    /// `best-then-polish` and `best-unpolished`: with a value K below the
-    /// number of matches the samples are drawn from (all, or
-    /// `cluster_subset` of them), every solution is first scored on K matches drawn
-    /// at random per seed, and only those with the most of them within
-    /// `thr_px` are scored on all matches (preemptive scoring: Nistér,
-    /// ICCV 2003; Matas & Chum's T(d,d) test, BMVC 2002). A five-point
-    /// sample has four roots on average and one survives, so the losers
-    /// cost K matches each instead of up to N. `0`: every solution scored
-    /// on all matches. Default 0.
-    pub preselect_matches: usize,
     /// How the matches of a minimal sample are drawn (step 1): `uniform`
     /// (the thesis) or `localized` (the first uniformly, the others among
     /// its nearest matches in image 1: NAPSAC, Torr et al. 2002, as
     /// J-/T-Linkage (Toldo & Fusiello 2008) and Progressive-X sample;
-    /// neighbourhood size [`crate::neighbourhood_size`]). Default
-    /// `uniform`.
+    /// neighbourhood size [`crate::neighbourhood_size`]) or `guided`
+    /// (uniform and localized in turn, the uniform turns guided by the
+    /// hypotheses so far after the first batch, [`Sampling::Guided`]).
+    /// Default `uniform`.
     pub sampling: Sampling,
     /// Samples per batch of `sampling = "guided"`: the first batch is
-    /// drawn as `mixed`, each later one guided by the co-inlier counts of
+    /// drawn unguided, each later one guided by the co-inlier counts of
     /// every hypothesis before it ([`crate::CoInlierKernel`]). Smaller
     /// batches guide sooner and rebuild the counts more often (each
     /// rebuild costs N²/2 · M/64 word operations). Ignored by the other
@@ -170,40 +140,19 @@ pub struct Params {
     /// Local test variant (step 5): `algorithm1` or `reference-code`.
     /// Default `algorithm1`.
     pub local_test: LocalTest,
-    /// When f_peak lies outside [`crate::PLAUSIBLE_FOCAL_RANGE`] times the
-    /// focal prior: `filter` all the same (the thesis) or `abstain` (keep
-    /// every refined hypothesis: the baseline's labels). Default `filter`.
-    pub implausible_focal: ImplausibleFocal,
     /// Clustering (step 8): `t-linkage` or `j-linkage`. Default `t-linkage`.
     pub linkage: Linkage,
     /// Clusters with fewer points become outliers (step 9). Default 8.
     pub min_cluster_size: usize,
     /// Which clusters step 9 keeps: `min-size` (`min_cluster_size` alone,
-    /// the thesis), `largest-gap` (T-Linkage's rule, Magri & Fusiello
-    /// 2014: sizes sorted, cut at the largest ratio of consecutive sizes) or
-    /// `{ relative-min = f }` (at least ⌈f N⌉ points); `min_cluster_size` is
+    /// the thesis) or `{ relative-min = f }` (at least ⌈f N⌉ points); `min_cluster_size` is
     /// a floor under each ([`clustering::SizeRule`]). Default `min-size`.
     pub size_rule: SizeRule,
     /// After the size filter: `none` (the clustering's labels, the thesis)
-    /// or `refit` (each cluster's F refitted by IRLS-Tukey on its points,
-    /// then every match to the cluster of smallest Sampson distance within
-    /// `thr_px`, else outlier; clusters left below `min_cluster_size`
-    /// become outliers; labels numbered by first appearance), as
-    /// Progressive-X (Barath & Matas, ICCV 2019) and consensus-space
-    /// clustering (Barath et al., CVPR 2023) end ([`crate::reassign`]);
     /// or `merge` (a cluster joins a larger one whose best-supported
     /// hypothesis explains [`crate::MERGE_SHARE`] of its matches,
-    /// [`crate::merge_explained`]) or `merge-refit` (`merge`, then a
-    /// cluster joins a larger one when the F refitted on the two explains
-    /// `MERGE_SHARE` of each, [`crate::merge_refitted`]) or
-    /// `merge-anchored` (the same, the refit started from the larger
-    /// cluster's model, [`crate::merge_anchored`]). Default `merge`
-    /// (the thesis: `none`).
+    /// [`crate::merge_explained`]). Default `merge` (the thesis: `none`).
     pub final_assignment: FinalAssignment,
-    /// Which kept hypotheses enter the preferences (step 7): `none` (all,
-    /// the thesis) or `same-inliers` (one per distinct inlier set,
-    /// [`DuplicateFilter`]). Default `none`.
-    pub duplicate_filter: DuplicateFilter,
     /// Steps 1–9 on at most this many matches, drawn at random per seed
     /// ([`crate::subset_indices`]); every other match then joins the
     /// cluster it is nearest to ([`Params::subset_extension`]). T-Linkage
@@ -215,22 +164,9 @@ pub struct Params {
     /// ([`SubsetExtension`]): `preference` (the nearest mean preference
     /// vector in Tanimoto distance, the subset's outliers a class of their
     /// own), `preference-explained` (the same, then an outlier unless the
-    /// cluster's best-supported hypothesis explains it within `thr_px`) or
-    /// `model` (the nearest best-supported hypothesis within `thr_px`);
-    /// `preference-refit` and `model-refit` are the last two with each
-    /// cluster's model refitted by IRLS-Tukey on its clustered matches
-    /// ([`crate::refitted_cluster_models`]); `neighbours` (the label most
-    /// of its [`crate::EXTENSION_NEIGHBOURS`] nearest clustered matches in
-    /// (x₁, y₁, x₂, y₂) have, then an outlier unless that cluster's
-    /// best-supported hypothesis explains it within `thr_px`). Default
-    /// `preference-explained` (results/README.md, "Real-sized scenes").
+    /// cluster's best-supported hypothesis explains it within `thr_px`).
+    /// Default `preference-explained` (results/README.md, "Real-sized scenes").
     pub subset_extension: SubsetExtension,
-    /// After the final assignment and the subset's extension: `none` (the
-    /// outliers stay, the thesis) or `refit` (each cluster's F refitted by
-    /// IRLS-Tukey, [`crate::CLUSTER_REFIT_ITERS`] iterations; an outlier
-    /// joins the cluster whose refitted F explains it best within
-    /// `thr_px`, [`crate::recover_outliers`]). Default `none`.
-    pub recover_outliers: RecoverOutliers,
     /// Memory bound of the preferences and the clustering (steps 7–8), MB
     /// (10⁶ bytes; [`clustering::required_memory`]). With a bound the
     /// segmentation stops before drawing a sample when N points and
@@ -265,8 +201,6 @@ impl Params {
         Self {
             method: Method::Semical,
             num_samples: 3000,
-            adaptive_batch: 0,
-            adaptive_tolerance: 0.01,
             mss_size: 8,
             thr_px: 2.5,
             tau_diff: 0.05,
@@ -280,8 +214,6 @@ impl Params {
             eight_point: EightPoint::Normalized,
             minimal_solver: MinimalSolver::EightPoint,
             minimal_solutions: MinimalSolutions::Best,
-            min_consensus: 0,
-            preselect_matches: 0,
             sampling: Sampling::Uniform,
             guided_batch: 100,
             focal_solver: FocalSolver::Kocur,
@@ -290,15 +222,12 @@ impl Params {
             focal_failure: OnFailure::Report,
             truncate_focals: false,
             local_test: LocalTest::Algorithm1,
-            implausible_focal: ImplausibleFocal::Filter,
             linkage: Linkage::TLinkage,
             min_cluster_size: 8,
             size_rule: SizeRule::MinSize,
             final_assignment: FinalAssignment::None,
-            duplicate_filter: DuplicateFilter::None,
             cluster_subset: 0,
             subset_extension: SubsetExtension::PreferenceExplained,
-            recover_outliers: RecoverOutliers::None,
             max_memory_mb: 0,
             seed: 12345,
         }
@@ -306,11 +235,9 @@ impl Params {
 }
 
 /// The keys of [`Params`] in declaration order.
-pub const PARAM_KEYS: [&str; 38] = [
+pub const PARAM_KEYS: [&str; 31] = [
     "method",
     "num_samples",
-    "adaptive_batch",
-    "adaptive_tolerance",
     "mss_size",
     "thr_px",
     "tau_diff",
@@ -324,8 +251,6 @@ pub const PARAM_KEYS: [&str; 38] = [
     "eight_point",
     "minimal_solver",
     "minimal_solutions",
-    "min_consensus",
-    "preselect_matches",
     "sampling",
     "guided_batch",
     "focal_solver",
@@ -334,15 +259,12 @@ pub const PARAM_KEYS: [&str; 38] = [
     "focal_failure",
     "truncate_focals",
     "local_test",
-    "implausible_focal",
     "linkage",
     "min_cluster_size",
     "size_rule",
     "final_assignment",
-    "duplicate_filter",
     "cluster_subset",
     "subset_extension",
-    "recover_outliers",
     "max_memory_mb",
     "seed",
 ];
@@ -385,15 +307,6 @@ impl Params {
         if self.sampling == Sampling::Guided && self.guided_batch == 0 {
             return Err(ParamError::new("guided_batch", "must be at least 1"));
         }
-        if !(0.0..=1.0).contains(&self.adaptive_tolerance) {
-            return Err(ParamError::new(
-                "adaptive_tolerance",
-                format!(
-                    "must be a fraction in [0, 1], got {}",
-                    self.adaptive_tolerance
-                ),
-            ));
-        }
         if self.mss_size < 8 {
             return Err(ParamError::new(
                 "mss_size",
@@ -416,11 +329,10 @@ impl Params {
         positive("thr_px", self.thr_px)?;
         positive("tau_diff", self.tau_diff)?;
         positive("tau_range", self.tau_range)?;
-        if (self.refine || self.final_assignment == FinalAssignment::Refit) && self.irls_iters == 0
-        {
+        if self.refine && self.irls_iters == 0 {
             return Err(ParamError::new(
                 "irls_iters",
-                "must be at least 1 when refine = true or final_assignment = \"refit\"",
+                "must be at least 1 when refine = true",
             ));
         }
         if !(self.irls_sigma_offset_px.is_finite() && self.irls_sigma_offset_px >= 0.0) {
@@ -473,14 +385,10 @@ impl Params {
             seed: self.seed,
             num_samples: self.num_samples,
             cluster_subset: self.cluster_subset,
-            adaptive_batch: self.adaptive_batch,
-            adaptive_tolerance_bits: self.adaptive_tolerance.to_bits(),
             mss_size: self.mss_size,
             eight_point: self.eight_point,
             minimal_solver: self.minimal_solver,
             minimal_solutions: self.minimal_solutions,
-            min_consensus: self.min_consensus,
-            preselect_matches: self.preselect_matches,
             sampling: self.sampling,
             guided_batch: match self.sampling {
                 Sampling::Guided => self.guided_batch,
@@ -543,14 +451,10 @@ pub struct HypothesisKey {
     seed: u64,
     num_samples: usize,
     cluster_subset: usize,
-    adaptive_batch: usize,
-    adaptive_tolerance_bits: u64,
     mss_size: usize,
     eight_point: EightPoint,
     minimal_solver: MinimalSolver,
     minimal_solutions: MinimalSolutions,
-    min_consensus: usize,
-    preselect_matches: usize,
     sampling: Sampling,
     guided_batch: usize,
     refine: bool,
@@ -646,14 +550,6 @@ mod tests {
             ..Default::default()
         };
         assert!(no_refine.validate().is_ok());
-        let refit_without_iterations = Params {
-            final_assignment: FinalAssignment::Refit,
-            ..no_refine
-        };
-        assert_eq!(
-            refit_without_iterations.validate().unwrap_err().key,
-            "irls_iters"
-        );
     }
 
     #[test]
@@ -681,11 +577,11 @@ mod tests {
             ..a.clone()
         };
         assert_ne!(a.hypothesis_key(), subset.hypothesis_key());
-        let preselect = Params {
-            preselect_matches: 32,
+        let unpolished = Params {
+            minimal_solutions: MinimalSolutions::BestUnpolished,
             ..a.clone()
         };
-        assert_ne!(a.hypothesis_key(), preselect.hypothesis_key());
+        assert_ne!(a.hypothesis_key(), unpolished.hypothesis_key());
         let batch = Params {
             guided_batch: 50,
             ..a.clone()
@@ -701,11 +597,11 @@ mod tests {
             ..guided.clone()
         };
         assert_ne!(guided.hypothesis_key(), guided_batch.hypothesis_key());
-        let refit = Params {
-            final_assignment: FinalAssignment::Refit,
+        let unmerged = Params {
+            final_assignment: FinalAssignment::None,
             ..a.clone()
         };
-        assert_eq!(a.hypothesis_key(), refit.hypothesis_key());
+        assert_eq!(a.hypothesis_key(), unmerged.hypothesis_key());
         let d = Params {
             weight_sets: WeightSets::Preset(WeightPreset::Hopef),
             ..a.clone()

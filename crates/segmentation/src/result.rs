@@ -18,9 +18,6 @@ pub enum HypothesisStatus {
     LocalTestFailed,
     /// Its `f_avg` lies outside the band around f_peak (Eq. 37).
     OutsideBand,
-    /// Its inlier set equals an earlier kept hypothesis's
-    /// (`duplicate_filter = "same-inliers"`, step 7).
-    Duplicate,
     /// It reached the clustering.
     Kept,
 }
@@ -34,7 +31,6 @@ impl HypothesisStatus {
             Self::FocalFailed => "focal-failed",
             Self::LocalTestFailed => "local-test-failed",
             Self::OutsideBand => "outside-band",
-            Self::Duplicate => "duplicate",
             Self::Kept => "kept",
         }
     }
@@ -176,9 +172,6 @@ pub struct Segmentation {
     pub consensus_fallback: bool,
     /// Whether the focal consensus is plausible for the focal prior.
     pub focal_verdict: FocalVerdict,
-    /// True when the filter abstained on an implausible consensus
-    /// (`implausible_focal = "abstain"`) and kept every refined hypothesis.
-    pub focal_abstained: bool,
     /// The clusters kept after the size filter, by label.
     pub clusters: Vec<ClusterModel>,
     /// Clusters before the size filter (step 9).

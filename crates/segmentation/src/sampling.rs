@@ -86,13 +86,14 @@ pub struct MinimalSampler {
     /// first, ties by index, flattened; empty for uniform sampling.
     neighbours: Vec<u32>,
     k: usize,
-    /// [`Sampling::Mixed`]: the even samples uniform.
+    /// [`Sampling::Guided`]: the even samples uniform (or guided, after
+    /// the first batch), the odd ones localized.
     mixed: bool,
 }
 
 impl MinimalSampler {
     /// The sampler of `points1` (image 1) for samples of `sample_size`:
-    /// for [`Sampling::Localized`] and [`Sampling::Mixed`] the
+    /// for [`Sampling::Localized`] and [`Sampling::Guided`] the
     /// [`neighbourhood_size`] nearest
     /// neighbours of every match, found in an R*-tree (`rstar`).
     pub fn new(points1: &[[f64; 2]], sampling: Sampling, sample_size: usize) -> Self {
@@ -121,7 +122,7 @@ impl MinimalSampler {
             n,
             neighbours,
             k,
-            mixed: matches!(sampling, Sampling::Mixed | Sampling::Guided),
+            mixed: sampling == Sampling::Guided,
         }
     }
 
@@ -135,7 +136,7 @@ impl MinimalSampler {
     }
 
     /// The sample of hypothesis `index` as [`sample`](Self::sample) draws
-    /// it, except that with a `guide` the even (uniform) turns of mixed
+    /// it, except that with a `guide` the even (uniform) turns of guided
     /// sampling are guided ([`CoInlierKernel::sample`], from stream `index`
     /// of [`hypothesis_rng`]).
     pub fn sample_guided(
@@ -154,8 +155,8 @@ impl MinimalSampler {
     }
 
     /// The sample of hypothesis `index`: `size` distinct matches. Uniform
-    /// (and the even indices of mixed sampling): [`minimal_sample`].
-    /// Localized (and the odd indices of mixed): from stream `index` of
+    /// (and the even indices of guided sampling): [`minimal_sample`].
+    /// Localized (and the odd indices of guided): from stream `index` of
     /// [`hypothesis_rng`], the first match uniformly, then `size − 1`
     /// distinct matches uniformly among its neighbourhood (all other
     /// matches when the neighbourhood is too small). At most `n` matches.
@@ -276,16 +277,16 @@ mod tests {
     }
 
     #[test]
-    fn mixed_sampling_alternates_uniform_and_localized() {
+    fn unguided_guided_sampling_alternates_uniform_and_localized() {
         let points = grid_points(200, 4);
         let uniform = MinimalSampler::new(&points, Sampling::Uniform, 5);
         let localized = MinimalSampler::new(&points, Sampling::Localized, 5);
-        let mixed = MinimalSampler::new(&points, Sampling::Mixed, 5);
+        let mixed = MinimalSampler::new(&points, Sampling::Guided, 5);
         assert_eq!(mixed.neighbourhood(7), localized.neighbourhood(7));
         for j in 0..100 {
             let expected = if j % 2 == 0 { &uniform } else { &localized };
             assert_eq!(
-                mixed.sample(3, j, 5),
+                mixed.sample_guided(None, 3, j, 5),
                 expected.sample(3, j, 5),
                 "sample {j}"
             );
@@ -293,9 +294,8 @@ mod tests {
     }
 
     #[test]
-    fn guided_sampling_replaces_the_uniform_turns_of_mixed() {
+    fn guided_sampling_replaces_the_uniform_turns() {
         let points = grid_points(120, 6);
-        let mixed = MinimalSampler::new(&points, Sampling::Mixed, 5);
         let guided = MinimalSampler::new(&points, Sampling::Guided, 5);
         let mut co = crate::CoInliers::new(120, 30);
         for h in 0..30 {
@@ -303,11 +303,11 @@ mod tests {
         }
         let kernel = co.kernel();
         for j in 0..60 {
-            assert_eq!(guided.sample_guided(None, 3, j, 5), mixed.sample(3, j, 5));
+            assert_eq!(guided.sample_guided(None, 3, j, 5), guided.sample(3, j, 5));
             let expected = if j % 2 == 0 {
                 kernel.sample(&mut hypothesis_rng(3, j), 5)
             } else {
-                mixed.sample(3, j, 5)
+                guided.sample(3, j, 5)
             };
             assert_eq!(guided.sample_guided(Some(kernel), 3, j, 5), expected, "{j}");
         }

@@ -1,21 +1,19 @@
 //! Algorithm 1 end to end (docs/method.md steps 1–9), and steps 5–9 on
 //! hypotheses and focals computed beforehand.
 
-use crate::assignment::{cluster_refit_irls, members};
-use crate::merge::{cluster_hypotheses, inlier_words};
+use crate::assignment::members;
+use crate::merge::inlier_words;
 use crate::{
     centred_points, estimate_hypothesis_focals, extend_labels, focal_filter, generate_hypotheses,
-    merge_anchored, merge_explained, merge_refitted, reassign, recover_outliers, ClusterModel,
-    ClusteredSubset, DuplicateFilter, FinalAssignment, FocalVerdict, GeneratedHypotheses,
-    Hypothesis, HypothesisCounts, HypothesisFocals, HypothesisStatus, InlierBits, Matches, Method,
-    MinimalSolutions, MinimalSolver, Params, RecoverOutliers, Segmentation, SegmentationError,
-    StageTimings, SubsetExtension,
+    merge_explained, ClusterModel, ClusteredSubset, FinalAssignment, FocalVerdict,
+    GeneratedHypotheses, Hypothesis, HypothesisCounts, HypothesisFocals, HypothesisStatus,
+    InlierBits, Matches, Method, Params, Segmentation, SegmentationError, StageTimings,
+    SubsetExtension,
 };
 use clustering::{ClusteringParams, Preferences};
 use geometry::{eight_point_normalized, sampson_distances_squared, Correspondences, SampsonModels};
 use nalgebra::Matrix3;
 use std::borrow::Cow;
-use std::collections::HashSet;
 use std::time::Instant;
 
 /// Segments `matches` by Algorithm 1 (docs/method.md steps 1–9) with `params`.
@@ -94,7 +92,6 @@ pub fn segment_with(
     let mut consensus = None;
     let mut consensus_fallback = false;
     let mut focal_verdict = FocalVerdict::NotEstimated;
-    let mut focal_abstained = false;
     if let Some(focals) = focals.filter(|_| params.method == Method::Semical) {
         for &j in &refined {
             hypotheses[j].focals = focals.focals[j];
@@ -106,7 +103,7 @@ pub fn segment_with(
         let outcome = focal_filter(&mut hypotheses, &refined, params, matches.focal_prior);
         (consensus, consensus_fallback, counts.local_ok) =
             (outcome.consensus, outcome.fallback, outcome.local_ok);
-        (focal_verdict, focal_abstained) = (outcome.verdict, outcome.abstained);
+        focal_verdict = outcome.verdict;
         timings.consensus = t.elapsed().as_secs_f64();
     }
     // Steps 1–4 ran before this call (or were shared with another one).
@@ -124,7 +121,6 @@ pub fn segment_with(
         consensus,
         consensus_fallback,
         focal_verdict,
-        focal_abstained,
         clusters: Vec::new(),
         clusters_before_filter: 0,
         timings,
@@ -151,19 +147,8 @@ fn check_stages(
     let subset_ok = generated.points.len() == n
         && n == subset_len
         && generated.subset.last().map_or(true, |&i| i < matches.len());
-    // With every solution of a minimal sample kept, a sample may give
-    // several hypotheses; otherwise there is one per sample.
-    let one_per_sample = params.minimal_solver == MinimalSolver::EightPoint
-        || params.minimal_solutions != MinimalSolutions::All;
-    // Adaptive M stops after some batch: at least one sample, at most M
-    // (one per sample).
-    let m_matches = match (one_per_sample, params.adaptive_batch > 0) {
-        (true, false) => m == params.num_samples,
-        (true, true) => (1..=params.num_samples).contains(&m),
-        (false, false) => m >= params.num_samples,
-        (false, true) => m >= 1,
-    };
-    if !subset_ok || !m_matches {
+    // One hypothesis per minimal sample.
+    if !subset_ok || m != params.num_samples {
         return Err(SegmentationError::StageMismatch(format!(
             "hypotheses generated for {n} points and M = {m}, not {subset_len} and {}",
             params.num_samples
@@ -223,12 +208,9 @@ fn cluster_kept(
     let subset_active = generated.subset.len() < matches.len();
     // The inlier sets of the entering hypotheses: the merge's models, and
     // the cluster models that the subset's extension may test against.
-    let keep_inliers = matches!(
-        params.final_assignment,
-        FinalAssignment::Merge | FinalAssignment::MergeRefit | FinalAssignment::MergeAnchored
-    ) || (subset_active
-        && params.subset_extension != SubsetExtension::Preference);
-    let step7 = build_preferences(segmentation, generated, kept, params, keep_inliers)?;
+    let keep_inliers = params.final_assignment == FinalAssignment::Merge
+        || (subset_active && params.subset_extension != SubsetExtension::Preference);
+    let step7 = build_preferences(generated, kept, params, keep_inliers)?;
     segmentation.timings.preferences = t.elapsed().as_secs_f64();
 
     // Steps 8–9: linkage and size filter.
@@ -239,16 +221,11 @@ fn cluster_kept(
     let t = Instant::now();
     let (labels, clusters) = match params.final_assignment {
         FinalAssignment::None => (clustering.labels, clustering.clusters_after_filter),
-        FinalAssignment::Refit => with_count(reassign(
-            points,
+        FinalAssignment::Merge => with_count(merge_explained(
             &clustering.labels,
             clustering.clusters_after_filter,
-            params,
+            &step7.inliers,
         )),
-        FinalAssignment::Merge | FinalAssignment::MergeRefit | FinalAssignment::MergeAnchored => {
-            let (labels, count) = (&clustering.labels, clustering.clusters_after_filter);
-            merged_clusters(points, labels, count, &step7.inliers, &step7.models, params)
-        }
     };
     let (labels, all_points) = if subset_active {
         let all = centred_points(matches, params)?;
@@ -259,47 +236,17 @@ fn cluster_kept(
         };
         let tau = params.thr_px * params.thr_px;
         let how = params.subset_extension;
-        let irls = cluster_refit_irls(params);
         let (models, inliers) = (&step7.models, &step7.inliers);
-        let labels = extend_labels(&all, subset, models, inliers, tau, how, &irls);
+        let labels = extend_labels(&all, subset, models, inliers, tau, how);
         (labels, Cow::Owned(all))
     } else {
         (labels, Cow::Borrowed(points))
-    };
-    let labels = match params.recover_outliers {
-        RecoverOutliers::None => labels,
-        RecoverOutliers::Refit => recover_outliers(&all_points, &labels, clusters, params),
     };
     segmentation.clusters = cluster_models(&all_points, &labels, clusters);
     segmentation.timings.cluster_fit = t.elapsed().as_secs_f64();
     segmentation.clusters_before_filter = clustering.clusters_before_filter;
     segmentation.labels = labels;
     Ok(())
-}
-
-/// The merges of `final_assignment = "merge"`, `"merge-refit"` and
-/// `"merge-anchored"`: [`merge_explained`], then for the latter two the
-/// union refits of [`merge_refitted`] or [`merge_anchored`] (anchored at
-/// each merged cluster's best-supported hypothesis among `models`, the
-/// hypotheses that entered the preferences). The labels and their cluster
-/// count.
-fn merged_clusters(
-    points: &Correspondences,
-    labels: &[i32],
-    clusters: usize,
-    inliers: &InlierBits,
-    models: &[Matrix3<f64>],
-    params: &Params,
-) -> (Vec<i32>, usize) {
-    let (merged, count) = with_count(merge_explained(labels, clusters, inliers));
-    match params.final_assignment {
-        FinalAssignment::MergeRefit => with_count(merge_refitted(points, &merged, count, params)),
-        FinalAssignment::MergeAnchored => {
-            let anchors = cluster_hypotheses(&merged, count, inliers, models);
-            with_count(merge_anchored(points, &merged, count, &anchors, params))
-        }
-        _ => (merged, count),
-    }
 }
 
 /// What step 7 gives steps 8–9: the preferences, the inlier sets of the
@@ -314,14 +261,11 @@ struct PreferenceStage {
 /// Step 7 on the kept hypotheses (Eq. 38, or J-Linkage's `r ≤ τ`): the
 /// preference matrix, built one point at a time in parallel
 /// ([`clustering::Preferences::from_residual_rows`], each row stored at
-/// exactly its size), with `τ = thr_px²`. When the duplicate filter needs
-/// them or `keep_inliers` (the merge's and the subset extension's cluster
-/// models), each hypothesis's inlier set (`r ≤ τ`) comes first, one
-/// hypothesis at a time: a duplicate ([`DuplicateFilter::SameInliers`]) is
-/// marked and left out of the matrix, and the sets are returned when
-/// `keep_inliers` (empty otherwise).
+/// exactly its size), with `τ = thr_px²`. With `keep_inliers` (the merge's
+/// and the subset extension's cluster models), each hypothesis's inlier set
+/// (`r ≤ τ`) is computed first, one hypothesis at a time, and returned
+/// (empty otherwise).
 fn build_preferences(
-    segmentation: &mut Segmentation,
     generated: &GeneratedHypotheses,
     kept: &[usize],
     params: &Params,
@@ -329,26 +273,16 @@ fn build_preferences(
 ) -> Result<PreferenceStage, SegmentationError> {
     let points = &generated.points;
     let tau = params.thr_px * params.thr_px;
-    let dedup = params.duplicate_filter == DuplicateFilter::SameInliers;
     let mut residuals = vec![0.0; points.len()];
-    let mut seen = HashSet::new();
     let mut inliers = InlierBits::new(points.len());
     let mut entering = Vec::with_capacity(kept.len());
     for &j in kept {
         let Some(model) = generated.models[j].as_ref() else {
             continue;
         };
-        if dedup || keep_inliers {
+        if keep_inliers {
             sampson_distances_squared(model, points, &mut residuals);
-            let words = inlier_words(&residuals, tau);
-            if dedup && !seen.insert(words.clone()) {
-                segmentation.hypotheses[j].status = HypothesisStatus::Duplicate;
-                segmentation.counts.kept -= 1;
-                continue;
-            }
-            if keep_inliers {
-                inliers.push_words(words);
-            }
+            inliers.push_words(inlier_words(&residuals, tau));
         }
         entering.push(*model);
     }

@@ -12,12 +12,11 @@
 //! the geometric test of Progressive-X's final assignment (Barath & Matas,
 //! ICCV 2019).
 
-use crate::assignment::{drop_small_and_renumber, members, nearest_model, refit_clusters};
+use crate::assignment::drop_small_and_renumber;
 use crate::mean_preference::nearest_mean_preference;
 use crate::merge::cluster_hypotheses;
-use crate::neighbours::neighbour_vote;
 use crate::{hypothesis_rng, InlierBits, SubsetExtension};
-use geometry::{sampson_distances_squared, Correspondences, IrlsParams};
+use geometry::{sampson_distances_squared, Correspondences};
 use nalgebra::Matrix3;
 
 /// The matches steps 1–9 run on when `cluster_subset = size`: all of
@@ -42,7 +41,7 @@ pub fn subset_indices(seed: u64, n: usize, size: usize) -> Vec<usize> {
 
 /// `size` distinct indices of `0..n` (`size ≤ n`) drawn uniformly from
 /// stream `stream` of [`hypothesis_rng`], increasing.
-pub(crate) fn sorted_draw(seed: u64, stream: usize, n: usize, size: usize) -> Vec<usize> {
+fn sorted_draw(seed: u64, stream: usize, n: usize, size: usize) -> Vec<usize> {
     let mut rng = hypothesis_rng(seed, stream);
     let mut indices = rand::seq::index::sample(&mut rng, n, size).into_vec();
     indices.sort_unstable();
@@ -74,8 +73,8 @@ impl ClusteredSubset<'_> {
 /// clustered `subset`, given the `models` that entered the preferences,
 /// their `inliers` among the subset's matches (`r ≤ tau`, in the order of
 /// `models`, as step 7 computes them for the merge; `Preference` does not
-/// read them) and `tau = thr_px²`. A match of the subset keeps its label; any other match
-/// joins a cluster by `how`:
+/// read them) and `tau = thr_px²`. A match of the subset keeps its label;
+/// any other match joins a cluster by `how`:
 ///
 /// * [`SubsetExtension::Preference`]: its preference vector `p` (Eq. 38)
 ///   against the mean preference vector `μ` of each cluster's matches and
@@ -83,26 +82,14 @@ impl ClusteredSubset<'_> {
 ///   similarity `p·μ / (|p|² + |μ|² − p·μ)` (one minus Eq. 39's distance;
 ///   the lower label on ties, the outliers last), and is an outlier when
 ///   that class is the outliers' or it prefers no model;
-/// * [`SubsetExtension::Model`]: each cluster's model is the hypothesis
-///   with the most inliers among its matches (the model of
-///   [`crate::merge_explained`]), and the match goes to the model of
-///   smallest squared Sampson distance (Eq. 23) when it is `≤ tau`, else
-///   it is an outlier;
 /// * [`SubsetExtension::PreferenceExplained`]: as `Preference`, and the
-///   match is an outlier unless the joined cluster's model (as for
-///   `Model`) explains it (`≤ tau`);
-/// * [`SubsetExtension::ModelRefit`] and
-///   [`SubsetExtension::PreferenceRefit`]: as `Model` and
-///   `PreferenceExplained`, with each cluster's model the F refitted by
-///   IRLS-Tukey (Eqs. 33–34, `irls`) from the 8-point of the cluster's
-///   matches in the subset ([`refitted_cluster_models`]);
-/// * [`SubsetExtension::Neighbours`]: the label most of its
-///   [`crate::EXTENSION_NEIGHBOURS`] nearest matches of the subset in
-///   (x₁, y₁, x₂, y₂) have (the outliers a class), and an outlier unless
-///   that cluster's model (as for `Model`) explains it (`≤ tau`).
+///   match is an outlier unless the joined cluster's model, the hypothesis
+///   with the most inliers among its matches (the model of
+///   [`crate::merge_explained`]), explains it (squared Sampson distance,
+///   Eq. 23, `≤ tau`).
 ///
-/// `irls` is read by the two refits only. Labels are then renumbered 0,
-/// 1, … by first appearance, as the clustering numbers them.
+/// Labels are then renumbered 0, 1, … by first appearance, as the
+/// clustering numbers them.
 pub fn extend_labels(
     points: &Correspondences,
     subset: ClusteredSubset,
@@ -110,55 +97,16 @@ pub fn extend_labels(
     inliers: &InlierBits,
     tau: f64,
     how: SubsetExtension,
-    irls: &IrlsParams,
 ) -> Vec<i32> {
-    let cluster_models = || cluster_hypotheses(subset.labels, subset.clusters, inliers, models);
-    let refitted = || refitted_cluster_models(points, subset, cluster_models(), irls);
-    let mut labels = match how {
-        SubsetExtension::Preference => nearest_mean_preference(points, subset, models, tau),
-        SubsetExtension::Model => nearest_model(points, &cluster_models(), tau),
-        SubsetExtension::ModelRefit => nearest_model(points, &refitted(), tau),
-        SubsetExtension::PreferenceExplained => {
-            let labels = nearest_mean_preference(points, subset, models, tau);
-            unexplained_to_outliers(points, labels, &cluster_models(), tau)
-        }
-        SubsetExtension::PreferenceRefit => {
-            let labels = nearest_mean_preference(points, subset, models, tau);
-            unexplained_to_outliers(points, labels, &refitted(), tau)
-        }
-        SubsetExtension::Neighbours => {
-            let labels = neighbour_vote(points, subset);
-            unexplained_to_outliers(points, labels, &cluster_models(), tau)
-        }
-    };
+    let mut labels = nearest_mean_preference(points, subset, models, tau);
+    if how == SubsetExtension::PreferenceExplained {
+        let cluster_models = cluster_hypotheses(subset.labels, subset.clusters, inliers, models);
+        labels = unexplained_to_outliers(points, labels, &cluster_models, tau);
+    }
     for (&i, &label) in subset.indices.iter().zip(subset.labels) {
         labels[i] = label;
     }
     drop_small_and_renumber(&labels, subset.clusters, 0)
-}
-
-/// The model of each of the subset's clusters for the refitted
-/// extensions: the F fitted by IRLS-Tukey (Eqs. 33–34, `irls`) from the
-/// 8-point of the cluster's matches in the subset, or, where that fit
-/// fails (fewer than 8 matches, degenerate), `sampled`, the cluster's
-/// best-supported hypothesis. The sampled hypotheses were fitted to their
-/// own consensus sets; at small M none may span a whole motion, and its
-/// matches far from the sample then fail the `thr_px` test.
-pub fn refitted_cluster_models(
-    points: &Correspondences,
-    subset: ClusteredSubset,
-    sampled: Vec<Option<Matrix3<f64>>>,
-    irls: &IrlsParams,
-) -> Vec<Option<Matrix3<f64>>> {
-    let members: Vec<Vec<usize>> = members(subset.labels, subset.clusters)
-        .into_iter()
-        .map(|ks| ks.into_iter().map(|k| subset.indices[k]).collect())
-        .collect();
-    refit_clusters(points, &members, irls)
-        .into_iter()
-        .zip(sampled)
-        .map(|(refit, sampled)| refit.or(sampled))
-        .collect()
 }
 
 /// `labels` with every match whose cluster's model does not explain it
@@ -273,7 +221,7 @@ mod tests {
             .collect();
         // A model that explains nothing, the two motions' models and the
         // outliers' own: outlier 41 prefers what the subset's outliers
-        // prefer (Preference) and no cluster's model explains it (Model).
+        // prefer.
         let noise = Matrix3::new(0.0, 0.0, 1.0, 0.0, 0.0, 1.0, -1.0, -1.0, 0.0);
         let models = [
             noise,
@@ -281,19 +229,16 @@ mod tests {
             translation([1.0, 0.0]),
             translation([3.0, 5.0]),
         ];
-        // (The motions are interleaved in the image: `Neighbours` has its
-        // own test.)
-        for how in BY_MODEL_OR_PREFERENCE {
+        for how in BOTH {
             let bits = inliers(&points, &indices, &models, 1e-9);
-            let out = extend_labels(&points, subset, &models, &bits, 1e-9, how, &irls());
+            let out = extend_labels(&points, subset, &models, &bits, 1e-9, how);
             assert_eq!(out, expected, "{how:?}");
         }
         // Without the second motion's model its left-out matches prefer
-        // nothing (Preference) or have no model (Model; its five matches in
-        // the subset are too few to refit): outliers.
-        for how in BY_MODEL_OR_PREFERENCE {
+        // nothing: outliers.
+        for how in BOTH {
             let bits = inliers(&points, &indices, &models[2..], 1e-9);
-            let out = extend_labels(&points, subset, &models[2..], &bits, 1e-9, how, &irls());
+            let out = extend_labels(&points, subset, &models[2..], &bits, 1e-9, how);
             for (i, &l) in out.iter().enumerate() {
                 let left_out_of_b = (20..40).contains(&i) && !indices.contains(&i);
                 let want = if left_out_of_b { -1 } else { expected[i] };
@@ -322,11 +267,9 @@ mod tests {
         };
         let models = [translation([10.0, 0.0]), translation([0.0, 10.0])];
         let bits = inliers(&points, &indices, &models, 1.0);
-        let label_of_40 =
-            |how| extend_labels(&points, subset, &models, &bits, 1.0, how, &irls())[40];
+        let label_of_40 = |how| extend_labels(&points, subset, &models, &bits, 1.0, how)[40];
         assert_eq!(label_of_40(SubsetExtension::Preference), 0);
         assert_eq!(label_of_40(SubsetExtension::PreferenceExplained), -1);
-        assert_eq!(label_of_40(SubsetExtension::Model), -1);
     }
 
     /// The homography of [`one_motion`].
@@ -359,9 +302,10 @@ mod tests {
     }
 
     #[test]
-    fn a_refitted_model_explains_the_matches_the_sampled_one_misses() {
+    fn preference_joins_what_the_model_does_not_explain() {
         // The sampled hypothesis has its epipole 20 px off: it explains
-        // the matches of small parallax only.
+        // the matches of small parallax only, and the others still prefer
+        // it.
         let points = one_motion(90);
         let sampled =
             nalgebra::Vector3::new(400.0, 170.0, 1.0).cross_matrix() * motion_homography();
@@ -378,66 +322,19 @@ mod tests {
         let missed = |i: usize| i % 3 != 0 && r[i] > tau;
         assert!((0..90).filter(|&i| missed(i)).count() >= 20);
         let bits = inliers(&points, &indices, &models, tau);
-        let extend = |how| extend_labels(&points, subset, &models, &bits, tau, how, &irls());
-        for how in [SubsetExtension::Model, SubsetExtension::PreferenceExplained] {
-            let out = extend(how);
-            assert!((0..90).all(|i| (out[i] == -1) == missed(i)), "{how:?}");
-        }
-        // The refits explain every match; preference joins only those
-        // that prefer the sampled model (within 5 tau).
-        assert_eq!(extend(SubsetExtension::ModelRefit), vec![0; 90]);
-        let out = extend(SubsetExtension::PreferenceRefit);
+        let extend = |how| extend_labels(&points, subset, &models, &bits, tau, how);
+        let explained = extend(SubsetExtension::PreferenceExplained);
+        assert!((0..90).all(|i| (explained[i] == -1) == missed(i)));
+        // Without the check a match joins when it prefers the sampled
+        // model at all (within 5 tau), explained or not.
+        let out = extend(SubsetExtension::Preference);
         let preferring = |i: usize| i % 3 == 0 || preference(r[i], tau) > 0.0;
         assert!((0..90).all(|i| (out[i] == 0) == preferring(i)), "{out:?}");
         assert!((0..90).filter(|&i| missed(i) && out[i] == 0).count() > 0);
     }
 
-    #[test]
-    fn neighbours_part_two_motions_that_one_model_explains() {
-        // Two motions of the same F, side by side: x2 = x1 + (1, 0) on
-        // matches 0..40 and x2 = x1 + (2, 0) on 40..80, 200 px to the
-        // right. The one model explains both, and so does every
-        // preference. Left-out gross outlier 80 among the first motion's
-        // matches moves by (1, 9).
-        let base = shifted_matches(81, |_| [0.0, 0.0]);
-        let (mut p1, mut p2) = (Vec::new(), Vec::new());
-        for i in 0..81 {
-            let [x, y] = base.point1(i);
-            let (offset, d) = match i {
-                0..40 => (0.0, [1.0, 0.0]),
-                40..80 => (200.0, [2.0, 0.0]),
-                _ => (0.0, [1.0, 9.0]),
-            };
-            p1.push([x + offset, y]);
-            p2.push([x + offset + d[0], y + d[1]]);
-        }
-        let points = Correspondences::new(&p1, &p2).unwrap();
-        let truth: Vec<i32> = (0..81).map(|i| [0, 1, -1][i / 40]).collect();
-        let indices: Vec<usize> = (0..80).step_by(4).collect();
-        let labels: Vec<i32> = indices.iter().map(|&i| truth[i]).collect();
-        let subset = ClusteredSubset {
-            indices: &indices,
-            labels: &labels,
-            clusters: 2,
-        };
-        let (models, tau) = ([translation([1.0, 0.0])], 0.01);
-        let bits = inliers(&points, &indices, &models, tau);
-        let extend = |how| extend_labels(&points, subset, &models, &bits, tau, how, &irls());
-        assert_eq!(extend(SubsetExtension::Neighbours), truth);
-        let by_preference = extend(SubsetExtension::PreferenceExplained);
-        assert!(by_preference.iter().zip(&truth).any(|(a, b)| a != b));
-    }
-
-    const BY_MODEL_OR_PREFERENCE: [SubsetExtension; 5] = [
+    const BOTH: [SubsetExtension; 2] = [
         SubsetExtension::Preference,
-        SubsetExtension::Model,
         SubsetExtension::PreferenceExplained,
-        SubsetExtension::ModelRefit,
-        SubsetExtension::PreferenceRefit,
     ];
-
-    /// The refits' settings: the default's, five iterations.
-    fn irls() -> IrlsParams {
-        crate::assignment::cluster_refit_irls(&crate::Params::default())
-    }
 }

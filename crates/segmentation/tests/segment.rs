@@ -249,36 +249,25 @@ fn degenerate_input_is_reported_not_panicked_on() {
 }
 
 #[test]
-fn minimal_solvers_segment_a_synthetic_scene_and_all_solutions_add_hypotheses() {
+fn five_point_hypotheses_segment_a_synthetic_scene_one_per_sample() {
     use segmentation::{MinimalSolutions, MinimalSolver};
     let scene = quick_scene(2, 900);
     let focal = scene.true_focal.unwrap();
     let at_truth = matches(&scene).with_focal_prior(focal);
-    for solver in [
-        MinimalSolver::SevenPoint,
-        MinimalSolver::FivePoint,
-        MinimalSolver::SixPointFocal,
-    ] {
-        let best = Params {
-            minimal_solver: solver,
+    for choice in [MinimalSolutions::Best, MinimalSolutions::BestUnpolished] {
+        let params = Params {
+            minimal_solver: MinimalSolver::FivePoint,
+            minimal_solutions: choice,
             ..config(Method::Baseline)
         };
-        let seg = segmentation::segment(&at_truth, &best).unwrap();
+        let seg = segmentation::segment(&at_truth, &params).unwrap();
         assert!(
             me(&scene, &seg) < 0.05,
-            "{solver:?}: ME {}",
+            "{choice:?}: ME {}",
             me(&scene, &seg)
         );
-        assert_eq!(seg.counts.generated, 300, "{solver:?}");
-        let all = Params {
-            minimal_solutions: MinimalSolutions::All,
-            ..best
-        };
-        let seg_all = segmentation::segment(&at_truth, &all).unwrap();
-        // The 5-point (up to 10) and 6-point (up to 15) solvers return several
-        // solutions for most samples; the 7-point one or three.
-        assert!(seg_all.counts.generated > 300, "{solver:?}");
-        assert_eq!(seg_all.hypotheses.len(), seg_all.counts.generated);
+        assert_eq!(seg.counts.generated, 300, "{choice:?}");
+        assert_eq!(seg.hypotheses.len(), 300, "{choice:?}");
     }
 }
 
@@ -302,10 +291,8 @@ fn the_default_segments_synthetic_scenes_with_five_point_hypotheses() {
 }
 
 #[test]
-fn an_abstaining_filter_gives_the_baselines_labels_bit_for_bit() {
-    use segmentation::{
-        generate_hypotheses, segment_with, FocalVerdict, HypothesisFocals, ImplausibleFocal,
-    };
+fn an_implausible_consensus_is_filtered_all_the_same() {
+    use segmentation::{generate_hypotheses, segment_with, FocalVerdict, HypothesisFocals};
     let scene = quick_scene(2, 900);
     let m = matches(&scene);
     let semical = Params {
@@ -315,7 +302,7 @@ fn an_abstaining_filter_gives_the_baselines_labels_bit_for_bit() {
     let hypotheses = generate_hypotheses(&m, &semical).unwrap();
     // Every hypothesis answers a tiny focal (12 px for a prior of 1024 px),
     // except every tenth, which answers the prior: the consensus is
-    // implausible and the filter would keep only the tiny ones.
+    // implausible, and the filter keeps the tiny ones (the thesis).
     let answers: Vec<Option<(f64, f64)>> = (0..hypotheses.models.len())
         .map(|j| {
             Some(if j % 10 == 0 {
@@ -329,33 +316,14 @@ fn an_abstaining_filter_gives_the_baselines_labels_bit_for_bit() {
         HypothesisFocals::from_answers(&answers, &hypotheses, &semical, m.focal_prior).unwrap();
     let filtered = segment_with(&m, &semical, &hypotheses, Some(&focals)).unwrap();
     assert_eq!(filtered.focal_verdict, FocalVerdict::Implausible);
-    assert!(!filtered.focal_abstained);
+    assert!(!filtered.consensus_fallback);
     assert!(filtered.counts.kept < filtered.counts.refined);
-
-    let abstain = Params {
-        implausible_focal: ImplausibleFocal::Abstain,
-        ..semical.clone()
-    };
-    let abstained = segment_with(&m, &abstain, &hypotheses, Some(&focals)).unwrap();
-    assert!(abstained.focal_abstained);
-    assert_eq!(abstained.counts.kept, abstained.counts.refined);
-    let baseline = Params {
-        method: Method::Baseline,
-        ..abstain.clone()
-    };
-    let reference = segment_with(&m, &baseline, &hypotheses, None).unwrap();
-    assert_eq!(abstained.labels, reference.labels);
-    assert_eq!(abstained.clusters, reference.clusters);
-    // The same through `segment` with the baseline's own hypotheses.
-    let fresh = segment(
-        &scene,
-        &Params {
-            focal_solver: FocalSolver::Kocur,
-            ..baseline
-        },
-    )
-    .unwrap();
-    assert_eq!(fresh.labels, reference.labels);
+    for (j, h) in filtered.hypotheses.iter().enumerate() {
+        if hypotheses.models[j].is_some() {
+            let in_band = j % 10 != 0;
+            assert_eq!(h.status == HypothesisStatus::Kept, in_band, "hypothesis {j}");
+        }
+    }
 }
 
 /// Scene `<category>/<index>` of the `quick` preset without pixel noise
@@ -374,21 +342,6 @@ fn noise_free_scene(category: u32, index: u32) -> Scene {
     .scene
 }
 
-/// The noise-free scenes 1/0900, 2/0900 and 2/0901 of the final-assignment
-/// tests, each with its ground truth and its principal-point-centred
-/// points under `params`.
-fn noise_free_cases(params: &Params) -> Vec<(Scene, Vec<i32>, geometry::Correspondences)> {
-    [(1, 900), (2, 900), (2, 901)]
-        .into_iter()
-        .map(|(category, index)| {
-            let scene = noise_free_scene(category, index);
-            let truth = scene.labels.clone().unwrap();
-            let points = segmentation::centred_points(&matches(&scene), params).unwrap();
-            (scene, truth, points)
-        })
-        .collect()
-}
-
 /// True when `labels` equal `truth` (0 = outlier, 1..k motions) up to a
 /// renumbering on every match the truth calls an inlier (outliers of the
 /// generator are gross mismatches).
@@ -402,172 +355,6 @@ fn same_partition_on_inliers(labels: &[i32], truth: &[i32]) -> bool {
         .all(|(&l, &t)| {
             l >= 0 && *forward.entry(l).or_insert(t) == t && *backward.entry(t).or_insert(l) == l
         })
-}
-
-#[test]
-fn the_final_assignment_recovers_noise_free_labels_exactly() {
-    use segmentation::reassign;
-    let params = Params::default();
-    for (scene, truth, points) in noise_free_cases(&params) {
-        let motions = scene.num_motions();
-        // A clustering (labels 0..motions) that left every fifth inlier
-        // and every outlier out: the refits must take the left-out inliers
-        // back. (A cluster holding a tenth of another motion's matches is
-        // not refitted exactly by five IRLS iterations from its 8-point.)
-        let perturbed: Vec<i32> = truth
-            .iter()
-            .enumerate()
-            .map(|(i, &t)| if t == 0 || i % 5 == 0 { -1 } else { t - 1 })
-            .collect();
-        let labels = reassign(&points, &perturbed, motions, &params);
-        let what = scene.name.clone();
-        assert!(
-            same_partition_on_inliers(&labels, &truth),
-            "{what} {:?}",
-            labels
-                .iter()
-                .zip(&truth)
-                .map(|(&l, &t)| (l, t))
-                .collect::<std::collections::BTreeSet<_>>()
-        );
-        // Numbered by first appearance.
-        let firsts: Vec<i32> = labels.iter().fold(Vec::new(), |mut seen, &l| {
-            if l >= 0 && !seen.contains(&l) {
-                seen.push(l);
-            }
-            seen
-        });
-        assert_eq!(firsts, (0..motions as i32).collect::<Vec<_>>(), "{what}");
-        // Gross mismatches lie off every motion's epipolar geometry: nearly
-        // all end as outliers.
-        let outliers: Vec<i32> = (0..truth.len())
-            .filter(|&i| truth[i] == 0)
-            .map(|i| labels[i])
-            .collect();
-        let kept = outliers.iter().filter(|&&l| l >= 0).count();
-        assert!(
-            kept * 10 <= outliers.len(),
-            "{what}: {kept} of {}",
-            outliers.len()
-        );
-        // With min_cluster_size above every motion, everything is an outlier.
-        let strict = Params {
-            min_cluster_size: truth.len(),
-            ..params.clone()
-        };
-        assert!(reassign(&points, &perturbed, motions, &strict)
-            .iter()
-            .all(|&l| l == -1));
-    }
-}
-
-#[test]
-fn merges_by_refit_join_the_fragments_of_a_motion_and_keep_motions_apart() {
-    use segmentation::{fit_cluster, merge_anchored, merge_refitted};
-    for params in [Params::default(), Params::fast()] {
-        for (scene, truth, points) in noise_free_cases(&params) {
-            let motions = scene.num_motions();
-            // Every motion split in two interleaved fragments (labels
-            // 2 (t - 1) and 2 (t - 1) + 1), the gross outliers left out.
-            let fragments: Vec<i32> = truth
-                .iter()
-                .enumerate()
-                .map(|(i, &t)| {
-                    if t == 0 {
-                        -1
-                    } else {
-                        2 * (t - 1) + (i % 2) as i32
-                    }
-                })
-                .collect();
-            // Anchors: each fragment's own 8-point F.
-            let anchors: Vec<_> = (0..2 * motions as i32)
-                .map(|c| {
-                    let idx: Vec<usize> = (0..fragments.len())
-                        .filter(|&i| fragments[i] == c)
-                        .collect();
-                    fit_cluster(&points, &idx)
-                })
-                .collect();
-            let what = scene.name.clone();
-            for labels in [
-                merge_refitted(&points, &fragments, 2 * motions, &params),
-                merge_anchored(&points, &fragments, 2 * motions, &anchors, &params),
-                merge_anchored(&points, &fragments, 2 * motions, &[], &params),
-            ] {
-                assert!(same_partition_on_inliers(&labels, &truth), "{what}");
-                assert_eq!(labels.iter().max(), Some(&(motions as i32 - 1)), "{what}");
-            }
-            // One fragment per motion: nothing to merge, the labels stay.
-            let halves: Vec<i32> = fragments
-                .iter()
-                .map(|&l| if l % 2 == 0 { l / 2 } else { -1 })
-                .collect();
-            let half_anchors: Vec<_> = anchors.iter().step_by(2).copied().collect();
-            for kept in [
-                merge_refitted(&points, &halves, motions, &params),
-                merge_anchored(&points, &halves, motions, &half_anchors, &params),
-            ] {
-                let truth_halves: Vec<i32> = halves.iter().map(|&l| l + 1).collect();
-                assert!(same_partition_on_inliers(&kept, &truth_halves), "{what}");
-                assert_eq!(kept.iter().max(), Some(&(motions as i32 - 1)), "{what}");
-            }
-        }
-    }
-}
-
-#[test]
-fn outlier_recovery_takes_back_the_left_out_inliers_and_moves_no_one_else() {
-    use segmentation::recover_outliers;
-    for params in [Params::default(), Params::fast()] {
-        for (scene, truth, points) in noise_free_cases(&params) {
-            let motions = scene.num_motions();
-            // Every third inlier and every gross outlier left out.
-            let clustered: Vec<i32> = truth
-                .iter()
-                .enumerate()
-                .map(|(i, &t)| if t == 0 || i % 3 == 0 { -1 } else { t - 1 })
-                .collect();
-            let labels = recover_outliers(&points, &clustered, motions, &params);
-            let what = scene.name.clone();
-            assert!(same_partition_on_inliers(&labels, &truth), "{what}");
-            // Clustered matches keep their cluster (the numbering may change).
-            assert!(same_partition_on_inliers(
-                &labels,
-                &clustered.iter().map(|&l| l + 1).collect::<Vec<_>>()
-            ));
-            // Gross mismatches lie off every motion's epipolar geometry.
-            let outliers = truth.iter().filter(|&&t| t == 0).count();
-            let joined = (0..truth.len())
-                .filter(|&i| truth[i] == 0 && labels[i] >= 0)
-                .count();
-            assert!(joined * 10 <= outliers, "{what}: {joined} of {outliers}");
-        }
-    }
-}
-
-#[test]
-fn segmenting_with_the_final_assignment_recovers_noise_free_labels() {
-    use segmentation::{FinalAssignment, Sampling};
-    // 2/0901 is left out: with localized samples at M 300 its labels are
-    // not exact there (the direct test above covers the assignment).
-    for (category, index) in [(2, 900)] {
-        let scene = noise_free_scene(category, index);
-        let truth = scene.labels.clone().unwrap();
-        for sampling in [Sampling::Uniform, Sampling::Localized] {
-            let params = Params {
-                num_samples: 300,
-                sampling,
-                final_assignment: FinalAssignment::Refit,
-                ..Params::default()
-            };
-            let seg = segment(&scene, &params).unwrap();
-            let what = format!("{} {sampling:?}", scene.name);
-            assert!(same_partition_on_inliers(&seg.labels, &truth), "{what}");
-            assert_eq!(seg.clusters.len(), scene.num_motions(), "{what}");
-            assert!(seg.clusters.iter().all(|c| c.size >= 8), "{what}");
-        }
-    }
 }
 
 #[test]
@@ -641,23 +428,24 @@ fn localized_sampling_does_not_depend_on_the_thread_count() {
 }
 
 #[test]
-fn guided_sampling_starts_as_mixed_and_does_not_depend_on_the_thread_count() {
+fn guided_sampling_starts_unguided_and_does_not_depend_on_the_thread_count() {
     use segmentation::{generate_hypotheses, Sampling};
     let scene = quick_scene(2, 901);
+    // One batch of all M samples: never guided.
     let mixed = Params {
         num_samples: 300,
-        sampling: Sampling::Mixed,
+        sampling: Sampling::Guided,
+        guided_batch: 300,
         ..Params::fast()
     };
     let guided = Params {
-        sampling: Sampling::Guided,
         guided_batch: 100,
         ..mixed.clone()
     };
     let (h1, h2) = hypotheses_on_one_and_two_threads(&scene, &guided);
     assert_eq!((&h1.models, &h1.fitted), (&h2.models, &h2.fitted));
     let m = generate_hypotheses(&matches(&scene), &mixed).unwrap();
-    // The first batch is mixed sampling's; the guided turns after it differ.
+    // The first batch is the unguided draw; the guided turns after it differ.
     assert_eq!(h1.models[..100], m.models[..100]);
     assert_ne!(h1.models[100..], m.models[100..]);
     let one = in_pool(1, || segment(&scene, &guided).unwrap());
@@ -672,26 +460,6 @@ fn guided_sampling_starts_as_mixed_and_does_not_depend_on_the_thread_count() {
 }
 
 #[test]
-fn guided_sampling_with_every_five_point_root_counts_past_m() {
-    use segmentation::{MinimalSolutions, Sampling};
-    // Several hypotheses per sample: more than M go into the counts, and
-    // the result still does not depend on the thread count.
-    let scene = quick_scene(2, 900);
-    let params = Params {
-        num_samples: 120,
-        sampling: Sampling::Guided,
-        guided_batch: 60,
-        minimal_solutions: MinimalSolutions::All,
-        ..Params::fast()
-    };
-    let (h1, h2) = hypotheses_on_one_and_two_threads(&scene, &params);
-    assert!(h1.models.len() > 120, "{} hypotheses", h1.models.len());
-    assert_eq!((&h1.models, &h1.fitted), (&h2.models, &h2.fitted));
-    let seg = segment(&scene, &params).unwrap();
-    assert!(me(&scene, &seg) < 0.1, "ME {}", me(&scene, &seg));
-}
-
-#[test]
 fn a_size_rule_above_the_floor_only_removes_clusters() {
     use segmentation::SizeRule;
     let scene = quick_scene(2, 900);
@@ -700,7 +468,7 @@ fn a_size_rule_above_the_floor_only_removes_clusters() {
         ..Params::default()
     };
     let min_size = segment(&scene, &base).unwrap();
-    for rule in [SizeRule::LargestGap, SizeRule::RelativeMin(0.2)] {
+    for rule in [SizeRule::RelativeMin(0.05), SizeRule::RelativeMin(0.2)] {
         let seg = segment(
             &scene,
             &Params {
@@ -733,10 +501,7 @@ fn clustering_a_subset_recovers_noise_free_labels_at_any_thread_count() {
         let truth = scene.labels.clone().unwrap();
         for how in [
             SubsetExtension::Preference,
-            SubsetExtension::Model,
-            SubsetExtension::ModelRefit,
-            SubsetExtension::PreferenceRefit,
-            SubsetExtension::Neighbours,
+            SubsetExtension::PreferenceExplained,
         ] {
             let params = Params {
                 num_samples: 300,
@@ -756,86 +521,4 @@ fn clustering_a_subset_recovers_noise_free_labels_at_any_thread_count() {
             assert_eq!(one.clusters.iter().map(|c| c.size).sum::<usize>(), labelled);
         }
     }
-}
-
-#[test]
-fn min_consensus_drops_exactly_the_solutions_that_explain_fewer_matches() {
-    use segmentation::{generate_hypotheses, MinimalSolutions, MinimalSolver};
-    let scene = quick_scene(2, 900);
-    let m = matches(&scene);
-    // Without refinement a hypothesis is its minimal solution, whose
-    // consensus set can be counted here.
-    let raw = Params {
-        num_samples: 200,
-        minimal_solver: MinimalSolver::FivePoint,
-        minimal_solutions: MinimalSolutions::BestUnpolished,
-        refine: false,
-        ..Params::default()
-    };
-    let all = generate_hypotheses(&m, &raw).unwrap();
-    let thr2 = raw.thr_px * raw.thr_px;
-    let mut distances = vec![0.0; all.points.len()];
-    let mut explained = |f: &nalgebra::Matrix3<f64>| {
-        geometry::sampson_distances_squared(f, &all.points, &mut distances);
-        distances.iter().filter(|&&d| d <= thr2).count()
-    };
-    let counts: Vec<Option<usize>> = all
-        .models
-        .iter()
-        .map(|f| f.map(|f| explained(&f)))
-        .collect();
-    for k in [13, 20, 40] {
-        let kept = generate_hypotheses(
-            &m,
-            &Params {
-                min_consensus: k,
-                ..raw.clone()
-            },
-        )
-        .unwrap();
-        assert_eq!(kept.fitted, all.fitted);
-        let expected: Vec<_> = all
-            .models
-            .iter()
-            .zip(&counts)
-            .map(|(f, c)| f.filter(|_| c.unwrap() >= k))
-            .collect();
-        assert_eq!(kept.models, expected, "min_consensus {k}");
-        let dropped = kept.models.iter().filter(|f| f.is_none()).count()
-            - all.models.iter().filter(|f| f.is_none()).count();
-        assert!(
-            dropped > 0 && dropped < 200,
-            "min_consensus {k}: {dropped} dropped"
-        );
-    }
-
-    // With refinement the kept hypotheses are refined as before; up to 8
-    // nothing changes (fewer than 8 matches were never refined), and the
-    // 8-point, which refines from its sample, ignores the key.
-    let refined = Params {
-        refine: true,
-        irls_iters: 1,
-        ..raw.clone()
-    };
-    let before = generate_hypotheses(&m, &refined).unwrap();
-    let with = |k: usize, p: &Params| {
-        generate_hypotheses(
-            &m,
-            &Params {
-                min_consensus: k,
-                ..p.clone()
-            },
-        )
-        .unwrap()
-    };
-    assert_eq!(with(8, &refined).models, before.models);
-    let after = with(20, &refined);
-    for ((a, b), c) in after.models.iter().zip(&before.models).zip(&counts) {
-        assert_eq!(*a, b.filter(|_| c.is_some_and(|c| c >= 20)));
-    }
-    let eight = config(Method::Baseline);
-    assert_eq!(
-        with(1000, &eight).models,
-        generate_hypotheses(&m, &eight).unwrap().models
-    );
 }

@@ -260,12 +260,8 @@ fn focal_line(
     let [low, high] = segmentation::PLAUSIBLE_FOCAL_RANGE;
     match (result.f_peak, segmentation.focal_verdict) {
         (Some(f), FocalVerdict::Implausible) => format!(
-            "\n  f_peak {f:.1} px is implausible (outside {low}-{high} x the focal prior {prior:.0} px): {}",
-            if segmentation.focal_abstained {
-                "the focal filter abstained, every hypothesis was kept (the baseline's labels)"
-            } else {
-                "the focal filter used it all the same (implausible_focal = \"abstain\" keeps every hypothesis)"
-            }
+            "\n  f_peak {f:.1} px is implausible (outside {low}-{high} x the focal prior {prior:.0} px): \
+             the focal filter used it all the same"
         ),
         (Some(f), _) => format!("\n  f_peak {f:.1} px (focal prior {prior:.0} px)"),
         (None, FocalVerdict::NoConsensus) => {

@@ -92,25 +92,31 @@ fn sampling_and_final_assignment_read_and_reject_bad_values() {
         segmentation::FinalAssignment::Merge
     );
     let c = parse(&format!(
-        "{BASE}[pipeline]\nsampling = \"localized\"\nfinal_assignment = \"refit\"\n"
+        "{BASE}[pipeline]\nsampling = \"localized\"\nfinal_assignment = \"none\"\n"
     ))
     .unwrap();
     let p = c.pipeline.params();
     assert_eq!(p.sampling, segmentation::Sampling::Localized);
-    assert_eq!(p.final_assignment, segmentation::FinalAssignment::Refit);
+    assert_eq!(p.final_assignment, segmentation::FinalAssignment::None);
     assert_eq!(PipelineConfig::from_params(p), c.pipeline);
-    let merge_refit = parse(&format!(
-        "{BASE}[pipeline]\nfinal_assignment = \"merge-refit\"\nrecover_outliers = \"refit\"\n"
-    ))
-    .unwrap();
-    assert_eq!(
-        merge_refit.pipeline.params().final_assignment,
-        segmentation::FinalAssignment::MergeRefit
-    );
-    assert_eq!(
-        merge_refit.pipeline.params().recover_outliers,
-        segmentation::RecoverOutliers::Refit
-    );
+    // Values and keys of variants that were measured and not adopted are
+    // refused, named.
+    for (line, key, what) in [
+        ("final_assignment = \"merge-refit\"", "final_assignment", "unknown variant `merge-refit`"),
+        ("sampling = \"mixed\"", "sampling", "unknown variant `mixed`"),
+        ("minimal_solver = \"seven-point\"", "minimal_solver", "unknown variant `seven-point`"),
+        ("minimal_solutions = \"all\"", "minimal_solutions", "unknown variant `all`"),
+        ("subset_extension = \"model\"", "subset_extension", "unknown variant `model`"),
+    ] {
+        let err = parse(&format!("{BASE}[pipeline]\n{line}\n")).unwrap_err();
+        let msg = err.to_string();
+        assert!(
+            msg.starts_with(&format!("exp.toml:5: pipeline.{key}: {what}")),
+            "{msg}"
+        );
+    }
+    let err = parse(&format!("{BASE}[pipeline]\nadaptive_batch = 100\n")).unwrap_err();
+    assert!(err.to_string().contains("adaptive_batch"), "{err}");
     let err = parse(&format!("{BASE}[pipeline]\nsampling = \"napsac\"\n")).unwrap_err();
     assert!(
         err.to_string()
@@ -226,7 +232,6 @@ fn size_rule_reads_each_rule_and_rejects_a_bad_fraction() {
     use segmentation::SizeRule;
     for (text, rule) in [
         ("\"min-size\"", SizeRule::MinSize),
-        ("\"largest-gap\"", SizeRule::LargestGap),
         ("{ relative-min = 0.01 }", SizeRule::RelativeMin(0.01)),
     ] {
         let c = parse(&format!("{BASE}[pipeline]\nsize_rule = {text}\n")).unwrap();

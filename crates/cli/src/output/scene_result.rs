@@ -83,8 +83,7 @@ pub struct SceneResult {
     /// the local test); empty when no focal was estimated.
     pub focal_verdict: String,
     /// `ok` (`ok (focal filter kept all)` when nothing passed the focal
-    /// filter, `ok (focal filter abstained: f_peak implausible)`) or why
-    /// every point is an outlier.
+    /// filter) or why every point is an outlier.
     pub status: String,
 }
 
