@@ -20,6 +20,9 @@ use std::collections::{BTreeMap, VecDeque};
 use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 
+// A scene's unknown label is the one the metrics leave out.
+const _: () = assert!(datasets::UNKNOWN_LABEL == metrics::GROUND_TRUTH_UNKNOWN);
+
 /// File-name suffix of the focal KDE figure of a scene.
 pub const FOCAL_KDE_SUFFIX: &str = "focal_kde";
 /// File-name suffix of the clusters figure of a scene.

@@ -111,10 +111,10 @@ impl Scene {
 
     /// Checks the invariants every loader guarantees: equal lengths of
     /// `points1`, `points2` and `labels`; N ≥ [`MIN_POINTS`]; finite
-    /// coordinates; labels ≥ 0 or [`UNKNOWN_LABEL`] and, when ground-truth matrices are given, no
-    /// label above their count; a non-zero image size; finite principal
-    /// point and matrices; a positive finite true focal; images, if any, of
-    /// the stated size.
+    /// coordinates; labels ≥ 0 or [`UNKNOWN_LABEL`] and, when ground-truth
+    /// matrices are given, no label above their count; a non-zero image
+    /// size; finite principal point and matrices; a positive finite true
+    /// focal; images, if any, of the stated size.
     ///
     /// The error is [`DatasetError::InvalidScene`] naming the scene, the
     /// field and the index (loaders add the file with
@@ -214,7 +214,10 @@ impl Scene {
             }
             let k = self.gt_fundamentals.len();
             if k > 0 {
-                if let Some(i) = labels.iter().position(|&l| l as usize > k) {
+                if let Some(i) = labels
+                    .iter()
+                    .position(|&l| l != UNKNOWN_LABEL && l as usize > k)
+                {
                     return Err(err(
                         "labels",
                         Some(i),
@@ -310,6 +313,19 @@ mod tests {
         assert_eq!(s.num_outliers(), 2);
         assert_eq!(s.focal_prior(), 100.0);
         assert!(s.validate().is_ok());
+    }
+
+    /// An unknown label is valid and counted apart; the label next to it,
+    /// -1, is not a spelling of it.
+    #[test]
+    fn unknown_labels_are_valid_and_counted() {
+        let mut s = scene();
+        s.labels.as_mut().unwrap()[7] = UNKNOWN_LABEL;
+        assert!(s.validate().is_ok());
+        assert_eq!(s.num_unknown(), 1);
+        assert_eq!((s.num_motions(), s.num_outliers()), (2, 2));
+        s.labels.as_mut().unwrap()[7] = UNKNOWN_LABEL + 1;
+        assert!(s.validate().is_err());
     }
 
     #[test]
