@@ -48,11 +48,7 @@ fn solver_options(
             options.focal_prior
         )));
     }
-    Params {
-        weight_sets: options.weight_sets.clone(),
-        max_iters: options.max_iters,
-        ..Params::default()
-    }
+    Params::default().with(|q| { q.focal.weight_sets = options.weight_sets.clone(); q.focal.max_iters = options.max_iters; })
     .validate()
     .map_err(|e| value_error(e.to_string()))?;
     Ok(options)

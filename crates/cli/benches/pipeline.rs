@@ -13,14 +13,13 @@ fn pipeline(c: &mut Criterion) {
     let mut group = c.benchmark_group(format!("segment_n{}", scene.len()));
     group.sample_size(10);
     for (method, m) in [(Method::Baseline, 5000), (Method::Semical, 1000)] {
-        let config = PipelineConfig::from_params(segmentation::Params {
-            method,
-            num_samples: m,
-            thr_px: 4.5,
-            tau_diff: 0.15,
-            tau_range: 0.25,
-            ..Default::default()
-        });
+        let config = PipelineConfig::from_params(segmentation::Params::default().with(|q| {
+            q.focal.method = method;
+            q.sampling.num_samples = m;
+            q.refinement.thr_px = 4.5;
+            q.focal.tau_diff = 0.15;
+            q.focal.tau_range = 0.25;
+        }));
         group.bench_function(format!("{method:?}_m{m}").to_lowercase(), |b| {
             b.iter(|| segment(&scene, &config).expect("segmentation"))
         });

@@ -65,7 +65,7 @@ fn parse(mut args: impl Iterator<Item = String>) -> Result<Options, String> {
         }
     }
     if let Some(m) = num_samples {
-        o.params.num_samples = m;
+        o.params.sampling.num_samples = m;
     }
     Ok(o)
 }
@@ -236,14 +236,14 @@ fn main() -> ExitCode {
                     return ExitCode::FAILURE;
                 }
             };
-            anatomy.add_true_models(&scene, o.params.thr_px);
+            anatomy.add_true_models(&scene, o.params.refinement.thr_px);
             for &seed in &o.seeds {
-                let p = Params {
-                    seed: scene_seed(seed, &scene.name),
-                    ..o.params.clone()
-                };
+                let p = o
+                    .params
+                    .clone()
+                    .with(|q| q.sampling.seed = scene_seed(seed, &scene.name));
                 let mut clustered = vec![false; scene.len()];
-                for i in subset_indices(p.seed, scene.len(), p.cluster_subset) {
+                for i in subset_indices(p.sampling.seed, scene.len(), p.sampling.cluster_subset) {
                     clustered[i] = true;
                 }
                 match segment(&matches(&scene), &p) {

@@ -56,7 +56,7 @@ pub fn draw_scene_plots(
         outliers
     );
     let kde_title = format!("{} ({})", scene.name, plots.label);
-    let values = segmentation.kde_values(pipeline.params.tau_diff);
+    let values = segmentation.kde_values(pipeline.params.focal.tau_diff);
     for format in &plots.formats {
         let ext = format.extension();
         let path = plots.dir.join(format!("{stem}_{CLUSTERS_SUFFIX}.{ext}"));
@@ -70,7 +70,7 @@ pub fn draw_scene_plots(
             &path,
         )?;
         written.push(path);
-        if pipeline.params.method != Method::Semical {
+        if pipeline.params.focal.method != Method::Semical {
             continue;
         }
         if let Some(consensus) = &segmentation.consensus {
@@ -78,7 +78,7 @@ pub fn draw_scene_plots(
             let plot = FocalKdePlot::from_consensus(
                 &values,
                 consensus,
-                pipeline.params.tau_range,
+                pipeline.params.focal.tau_range,
                 scene.true_focal,
                 &kde_title,
             );
@@ -252,7 +252,7 @@ impl PipelineEvaluator {
         let generated = self
             .hypotheses
             .get_or_compute(key.clone(), || generate_hypotheses(scene, pipeline))?;
-        let focals = match pipeline.params.method {
+        let focals = match pipeline.params.focal.method {
             Method::Semical => Some(self.focals.get_or_compute::<PipelineError>(
                 (
                     key,
@@ -348,13 +348,14 @@ mod tests {
             ];
             for (tau_range, focal_failure) in variants {
                 for num_samples in [150, 200] {
-                    configs.push(PipelineConfig::from_params(segmentation::Params {
-                        method,
-                        tau_range,
-                        focal_failure,
-                        num_samples,
-                        ..Default::default()
-                    }));
+                    configs.push(PipelineConfig::from_params(
+                        segmentation::Params::default().with(|q| {
+                            q.focal.method = method;
+                            q.focal.tau_range = tau_range;
+                            q.reference_code.focal_failure = focal_failure;
+                            q.sampling.num_samples = num_samples;
+                        }),
+                    ));
                 }
             }
         }

@@ -87,7 +87,7 @@ pub fn estimate_hypothesis_focals(
     hypotheses: &GeneratedHypotheses,
 ) -> Result<HypothesisFocals, PipelineError> {
     let params = config.scene_params(&scene.name);
-    if config.params.focal_solver != FocalSolver::External {
+    if config.params.focal.focal_solver != FocalSolver::External {
         return segmentation::estimate_hypothesis_focals(hypotheses, &params, scene.focal_prior())
             .map_err(scene_error(scene));
     }
@@ -108,7 +108,7 @@ fn external_answers(
     config: &PipelineConfig,
     hypotheses: &GeneratedHypotheses,
 ) -> Result<Vec<Option<(f64, f64)>>, PipelineError> {
-    let path = focal_file::focal_file_path(&config.focal_file, config.params.seed);
+    let path = focal_file::focal_file_path(&config.focal_file, config.params.sampling.seed);
     let error = |source: FocalFileError| PipelineError::FocalFile {
         scene: scene.name.clone(),
         source,
@@ -144,7 +144,7 @@ fn external_answers(
 pub fn segment(scene: &Scene, config: &PipelineConfig) -> Result<Segmentation, PipelineError> {
     let started = Instant::now();
     let hypotheses = generate_hypotheses(scene, config)?;
-    let focals = (config.params.method == Method::Semical)
+    let focals = (config.params.focal.method == Method::Semical)
         .then(|| estimate_hypothesis_focals(scene, config, &hypotheses))
         .transpose()?;
     let mut segmentation = segment_with(scene, config, &hypotheses, focals.as_ref())?;

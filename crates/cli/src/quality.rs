@@ -65,11 +65,11 @@ pub fn filter_quality(
         return Ok(None);
     };
     let mut config = config.clone();
-    config.params.method = Method::Semical;
+    config.params.focal.method = Method::Semical;
     let generated = generate_hypotheses(scene, &config)?;
     let focals = estimate_hypothesis_focals(scene, &config, &generated)?;
     let segmentation = segment_with(scene, &config, &generated, Some(&focals))?;
-    let tau = config.params.thr_px * config.params.thr_px;
+    let tau = config.params.refinement.thr_px * config.params.refinement.thr_px;
     let mut residuals = vec![0.0; scene.len()];
     let mut inliers = Vec::new();
     let mut q = FilterQuality::default();
@@ -100,10 +100,9 @@ mod tests {
     fn counts_add_up_and_ground_truth_models_are_good() {
         let params = datasets::synthetic::SyntheticParams::default();
         let scene = datasets::synthetic::generate_scene(&params, 3, 2, "q").unwrap();
-        let config = PipelineConfig::from_params(segmentation::Params {
-            num_samples: 300,
-            ..segmentation::Params::thesis()
-        });
+        let config = PipelineConfig::from_params(
+            segmentation::Params::thesis().with(|q| q.sampling.num_samples = 300),
+        );
         let q = filter_quality(&scene, &config).unwrap().unwrap();
         assert_eq!(q.kept + q.discarded, q.refined);
         assert_eq!(q.good_kept + q.good_discarded, q.good_refined);
@@ -118,7 +117,7 @@ mod tests {
             let f = crate::pipeline::fit_cluster(&points, &idx).unwrap();
             let mut r = vec![0.0; scene.len()];
             sampson_distances_squared(&f, &points, &mut r);
-            let tau = config.params.thr_px * config.params.thr_px;
+            let tau = config.params.refinement.thr_px * config.params.refinement.thr_px;
             let inliers: Vec<usize> = (0..r.len()).filter(|&i| r[i] < tau).collect();
             assert!(is_good_model(&inliers, labels), "motion {motion}");
         }

@@ -198,7 +198,7 @@ impl SweepPlan {
 }
 
 fn method_name(pipeline: &PipelineConfig) -> String {
-    format_value(&toml::Value::try_from(pipeline.params.method).expect("method serializes"))
+    format_value(&toml::Value::try_from(pipeline.params.focal.method).expect("method serializes"))
 }
 
 #[cfg(test)]
@@ -236,8 +236,8 @@ mod tests {
                 "semical,0.25,false"
             ]
         );
-        assert_eq!(p.combinations[3].pipeline.params.tau_range, 0.25);
-        assert!(!p.combinations[3].pipeline.params.refine);
+        assert_eq!(p.combinations[3].pipeline.params.focal.tau_range, 0.25);
+        assert!(!p.combinations[3].pipeline.params.refinement.refine);
     }
 
     #[test]
@@ -245,7 +245,7 @@ mod tests {
         let p = plan("[sweep]\nnum_samples = [100, 200]\n").unwrap();
         assert_eq!(p.columns, ["method", "num_samples"]);
         assert_eq!(p.combinations[1].values, ["baseline", "200"]);
-        assert_eq!(p.combinations[1].pipeline.params.num_samples, 200);
+        assert_eq!(p.combinations[1].pipeline.params.sampling.num_samples, 200);
     }
 
     #[test]
@@ -299,10 +299,7 @@ mod tests {
         for (c, m) in p.combinations.iter().zip([100, 200]) {
             assert_eq!(
                 c.pipeline.params(),
-                segmentation::Params {
-                    num_samples: m,
-                    ..thesis.clone()
-                }
+                thesis.clone().with(|q| q.sampling.num_samples = m)
             );
         }
     }

@@ -39,8 +39,8 @@ fn one_row_per_motion_with_the_libraries_answers() {
             let est = focal::robust_focals_multi_start(
                 &f,
                 scene.focal_prior(),
-                &config.pipeline.params.weight_sets.sets(),
-                config.pipeline.params.max_iters,
+                &config.pipeline.params.focal.weight_sets.sets(),
+                config.pipeline.params.focal.max_iters,
                 focal::OnFailure::Report,
             );
             expected.push((

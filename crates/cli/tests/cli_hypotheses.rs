@@ -41,7 +41,7 @@ fn writes_the_pipelines_hypotheses_and_reads_focals_back() {
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
 
     let mut config = ExperimentConfig::load(&quickstart()).unwrap();
-    config.pipeline.params.seed = 3;
+    config.pipeline.params.sampling.seed = 3;
     let scenes = sctl::dataset::load_scenes(&config.dataset, None, false).unwrap();
     let mut expected = 0;
     for scene in &scenes {

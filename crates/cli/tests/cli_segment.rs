@@ -398,11 +398,8 @@ fn profile_sets_every_key_the_config_does_not_give() {
     assert_eq!((labels, summary), segment(&[flag, fast.as_os_str()]));
 
     // A file's own profile applies; the file's keys override it.
-    let thesis_300 = Params {
-        num_samples: 300,
-        ..Params::thesis()
-    };
-    assert_ne!(thesis_300.method, Params::default().method);
+    let thesis_300 = Params::thesis().with(|q| q.sampling.num_samples = 300);
+    assert_ne!(thesis_300.focal.method, Params::default().focal.method);
     let on_thesis = config(
         "on_thesis.toml",
         "[pipeline]\nprofile = \"thesis\"\nnum_samples = 300\n",
@@ -415,10 +412,7 @@ fn profile_sets_every_key_the_config_does_not_give() {
     // --profile replaces the file's profile; the file's keys still override.
     let fast_300 = explicit(
         "fast_300.toml",
-        Params {
-            num_samples: 300,
-            ..Params::fast()
-        },
+        Params::fast().with(|q| q.sampling.num_samples = 300),
     );
     let args = [
         flag,

@@ -14,12 +14,11 @@ use std::fmt::Write;
 use std::path::Path;
 
 fn kocur() -> PipelineConfig {
-    PipelineConfig::from_params(segmentation::Params {
-        method: Method::Semical,
-        num_samples: 300,
-        focal_failure: OnFailure::Prior,
-        ..Default::default()
-    })
+    PipelineConfig::from_params(segmentation::Params::default().with(|q| {
+        q.focal.method = Method::Semical;
+        q.sampling.num_samples = 300;
+        q.reference_code.focal_failure = OnFailure::Prior;
+    }))
 }
 
 /// What the file says of a hypothesis's F.
@@ -62,7 +61,7 @@ fn focal_file(
 
 fn external(path: &Path) -> PipelineConfig {
     let mut config = kocur();
-    config.params.focal_solver = FocalSolver::External;
+    config.params.focal.focal_solver = FocalSolver::External;
     config.focal_file = path.to_str().unwrap().replace("12345", "{seed}");
     config
 }
@@ -107,7 +106,7 @@ fn answers_are_truncated_and_non_finite_ones_leave_no_focals() {
     });
     std::fs::write(&path, text).unwrap();
     let mut config = external(&path);
-    config.params.truncate_focals = true;
+    config.params.reference_code.truncate_focals = true;
     let generated = generate_hypotheses(&scene, &config).unwrap();
     let read = estimate_hypothesis_focals(&scene, &config, &generated).unwrap();
     for (j, model) in generated.models.iter().enumerate() {

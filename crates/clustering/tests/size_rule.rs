@@ -3,8 +3,8 @@
 //! memory bound.
 
 use clustering::{
-    cluster, cluster_with_rule, reference, t_linkage, ClusteringError,
-    ClusteringParams, Linkage, PreferenceMatrix, Preferences, SizeRule,
+    cluster, cluster_with_rule, reference, t_linkage, ClusteringError, ClusteringParams, Linkage,
+    PreferenceMatrix, Preferences, SizeRule,
 };
 
 #[test]

@@ -21,10 +21,10 @@
 
 #![warn(missing_docs)]
 
-pub mod eight_point;
-pub mod error;
 #[cfg(test)]
 mod dense_poly;
+pub mod eight_point;
+pub mod error;
 mod essential_system;
 pub mod five_point;
 pub mod irls;

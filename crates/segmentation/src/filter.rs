@@ -60,7 +60,7 @@ pub fn focal_filter(
     params: &Params,
     focal_prior: f64,
 ) -> FilterOutcome {
-    let reference = params.local_test == LocalTest::ReferenceCode;
+    let reference = params.reference_code.local_test == LocalTest::ReferenceCode;
     let mut local_ok = Vec::new();
     let mut pool = Vec::new();
     for &j in refined {
@@ -69,7 +69,7 @@ pub fn focal_filter(
             h.status = HypothesisStatus::FocalFailed;
             continue;
         };
-        let passes = focal::passes_local_test(focals.0, focals.1, params.tau_diff);
+        let passes = focal::passes_local_test(focals.0, focals.1, params.focal.tau_diff);
         if passes {
             local_ok.push(j);
         }
@@ -91,7 +91,7 @@ pub fn focal_filter(
             let Some(focals) = hypotheses[j].focals else {
                 continue;
             };
-            let inside = focal::within_band(f_avg(focals), c.f_peak, params.tau_range);
+            let inside = focal::within_band(f_avg(focals), c.f_peak, params.focal.tau_range);
             kept += usize::from(inside);
             hypotheses[j].status = if inside {
                 HypothesisStatus::Kept
@@ -141,11 +141,10 @@ mod tests {
             hyp(Some((-1000.0, -1000.0))),
         ];
         let refined: Vec<usize> = (0..hs.len()).collect();
-        let params = Params {
-            tau_diff: 0.05,
-            tau_range: 0.2,
-            ..Default::default()
-        };
+        let params = Params::default().with(|q| {
+            q.focal.tau_diff = 0.05;
+            q.focal.tau_range = 0.2;
+        });
         let mut a = hs.clone();
         let out = focal_filter(&mut a, &refined, &params, 1000.0);
         assert!(!out.fallback);
@@ -167,10 +166,9 @@ mod tests {
             ]
         );
         // Reference code: 6 stays in the pool and the band keeps it (f_avg 1000).
-        let reference = Params {
-            local_test: LocalTest::ReferenceCode,
-            ..params.clone()
-        };
+        let reference = params
+            .clone()
+            .with(|q| q.reference_code.local_test = LocalTest::ReferenceCode);
         let out = focal_filter(&mut hs, &refined, &reference, 1000.0);
         assert_eq!(out.local_ok, 5);
         assert_eq!(hs[6].status, Kept);

@@ -81,7 +81,7 @@ impl HypothesisFocals {
 /// `(f1, f2)` as the pipeline uses them: truncated to integers when
 /// `truncate_focals` (the reference code), else unchanged.
 pub fn focals_as_used(focals: (f64, f64), params: &Params) -> (f64, f64) {
-    if params.truncate_focals {
+    if params.reference_code.truncate_focals {
         (focals.0.trunc(), focals.1.trunc())
     } else {
         focals
@@ -98,19 +98,19 @@ pub fn estimate_focals(
     weight_sets: &[FocalWeights],
     focal_prior: f64,
 ) -> Option<FocalAnswer> {
-    let (focals, from_prior) = match params.focal_solver {
+    let (focals, from_prior) = match params.focal.focal_solver {
         FocalSolver::Kocur => focal::robust_focals_multi_start(
             f,
             focal_prior,
             weight_sets,
-            params.max_iters,
-            params.focal_failure,
+            params.focal.max_iters,
+            params.reference_code.focal_failure,
         )
         .ok()
         .map(|e| ((e.f1, e.f2), e.from_prior)),
         FocalSolver::Bougnoux => match focal::bougnoux(f, [0.0, 0.0], [0.0, 0.0]) {
             Ok(pair) => Some((pair, false)),
-            Err(_) if params.focal_failure == OnFailure::Prior => {
+            Err(_) if params.reference_code.focal_failure == OnFailure::Prior => {
                 Some(((focal_prior, focal_prior), true))
             }
             Err(_) => None,
@@ -134,11 +134,11 @@ pub fn estimate_hypothesis_focals(
     params: &Params,
     focal_prior: f64,
 ) -> Result<HypothesisFocals, SegmentationError> {
-    if params.focal_solver == FocalSolver::External {
+    if params.focal.focal_solver == FocalSolver::External {
         return Err(SegmentationError::ExternalFocalsRequired);
     }
     let t = Instant::now();
-    let weight_sets = params.weight_sets.sets();
+    let weight_sets = params.focal.weight_sets.sets();
     let estimates: Vec<Option<FocalAnswer>> = hypotheses
         .models
         .par_iter()

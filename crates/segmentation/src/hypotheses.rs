@@ -60,10 +60,10 @@ pub fn centred_points(
     let points = Correspondences::new(matches.points1, matches.points2)
         .map_err(SegmentationError::InvalidPoints)?
         .shifted(pp, pp);
-    if points.len() < params.mss_size {
+    if points.len() < params.sampling.mss_size {
         return Err(SegmentationError::TooFewPoints {
             n: points.len(),
-            needed: params.mss_size,
+            needed: params.sampling.mss_size,
         });
     }
     Ok(points)
@@ -82,7 +82,11 @@ pub fn generate_hypotheses(
     params: &Params,
 ) -> Result<GeneratedHypotheses, SegmentationError> {
     let all = centred_points(matches, params)?;
-    let subset = subset_indices(params.seed, all.len(), params.cluster_subset);
+    let subset = subset_indices(
+        params.sampling.seed,
+        all.len(),
+        params.sampling.cluster_subset,
+    );
     let (points, pixels1) = if subset.len() == all.len() {
         (all, Cow::Borrowed(matches.points1))
     } else {
@@ -92,18 +96,18 @@ pub fn generate_hypotheses(
             .map_err(SegmentationError::InvalidPoints)?;
         (points, Cow::Owned(pixels1))
     };
-    let sampler = MinimalSampler::new(&pixels1, params.sampling, params.sample_size());
-    let guided = params.sampling == Sampling::Guided;
+    let sampler = MinimalSampler::new(&pixels1, params.sampling.sampling, params.sample_size());
+    let guided = params.sampling.sampling == Sampling::Guided;
     let batch = if guided {
-        params.guided_batch
+        params.sampling.guided_batch
     } else {
-        params.num_samples
+        params.sampling.num_samples
     };
-    let mut co_inliers = guided.then(|| CoInliers::new(points.len(), params.num_samples));
+    let mut co_inliers = guided.then(|| CoInliers::new(points.len(), params.sampling.num_samples));
     let (mut fitted, mut models) = (Vec::new(), Vec::new());
     let (mut sampling_seconds, mut refine_seconds) = (0.0, 0.0);
-    for start in (0..params.num_samples).step_by(batch) {
-        let samples = start..(start + batch).min(params.num_samples);
+    for start in (0..params.sampling.num_samples).step_by(batch) {
+        let samples = start..(start + batch).min(params.sampling.num_samples);
         let t = Instant::now();
         let draw = Draw {
             sampler: &sampler,
@@ -113,7 +117,7 @@ pub fn generate_hypotheses(
                 .filter(|co| !co.is_empty())
                 .map(|co| co.kernel()),
         };
-        let fits = match params.minimal_solver {
+        let fits = match params.sampling.minimal_solver {
             MinimalSolver::EightPoint => fit_minimal_samples(&points, draw, samples, params),
             MinimalSolver::FivePoint => {
                 solve_minimal_samples(&points, draw, samples, params, matches.focal_prior)
@@ -176,9 +180,9 @@ fn fit_minimal_samples(
     samples
         .into_par_iter()
         .map(|j| {
-            let sample = draw.sample(params.seed, j, params.mss_size);
+            let sample = draw.sample(params.sampling.seed, j, params.sampling.mss_size);
             let subset = points.subset(&sample).ok()?;
-            let f = match params.eight_point {
+            let f = match params.reference_code.eight_point {
                 EightPoint::Normalized => eight_point_normalized(&subset),
                 EightPoint::Plain => eight_point_plain(&subset),
             }
@@ -204,14 +208,14 @@ fn solve_minimal_samples(
     samples
         .into_par_iter()
         .map(|j| {
-            let sample = draw.sample(params.seed, j, size);
+            let sample = draw.sample(params.sampling.seed, j, size);
             let subset = points.subset(&sample).ok()?;
             let chosen = solve_and_choose(
-                params.minimal_solutions,
+                params.sampling.minimal_solutions,
                 &subset,
                 points,
                 focal,
-                params.thr_px,
+                params.refinement.thr_px,
             )?;
             Some(SampleFit {
                 start: chosen.consensus,
@@ -227,7 +231,7 @@ fn refine_fits(
     fits: &[Option<SampleFit>],
     params: &Params,
 ) -> Vec<Option<Matrix3<f64>>> {
-    if !params.refine {
+    if !params.refinement.refine {
         return fits.iter().map(|fit| fit.as_ref().map(|s| s.f)).collect();
     }
     let irls = params.irls();

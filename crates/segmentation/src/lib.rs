@@ -29,7 +29,7 @@
 //! All geometry runs in principal-point-centred pixel coordinates: every F
 //! of a [`Segmentation`] satisfies `x2ᵀ F x1 = 0` for
 //! `x = (x − pp_x, y − pp_y, 1)`. The labels depend on the input, the
-//! parameters and [`Params::seed`] only, not on the number of threads
+//! parameters and [`SamplingParams::seed`] only, not on the number of threads
 //! (hypotheses are computed in the caller's rayon pool).
 
 mod assignment;
@@ -62,9 +62,11 @@ pub use hypotheses::{centred_points, generate_hypotheses, GeneratedHypotheses};
 pub use input::{image_centre, Matches};
 pub use merge::{merge_explained, InlierBits, MERGE_SHARE};
 pub use params::{
-    EightPoint, FinalAssignment, FocalKey, FocalSolver, HypothesisKey, IrlsFit, Linkage,
-    LocalTest, Method, MinimalSolutions, MinimalSolver, OnFailure, ParamError, Params, Sampling,
-    SizeRule, SubsetExtension, WeightPreset, WeightSets, PARAM_KEYS,
+    key, ClusterParams, EightPoint, FinalAssignment, FocalKey, FocalParams, FocalSolver,
+    HypothesisKey, IrlsFit, Key, KeyType, Linkage, LocalTest, Method, MinimalSolutions,
+    MinimalSolver, OnFailure, ParamError, Params, ReferenceCode, RefinementParams, Sampling,
+    SamplingParams, SelectionParams, SizeRule, Stage, SubsetExtension, WeightPreset, WeightSets,
+    KEYS, PARAM_KEYS,
 };
 pub use profile::Profile;
 pub use result::{

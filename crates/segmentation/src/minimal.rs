@@ -176,7 +176,9 @@ mod tests {
     fn five_point_recovers_the_true_f_on_noise_free_matches() {
         let focal = 900.0;
         let (points, truth) = rigid_scene(focal);
-        let sample: Vec<usize> = (0..geometry::FIVE_POINT_SAMPLE).map(|i| 3 * i + 1).collect();
+        let sample: Vec<usize> = (0..geometry::FIVE_POINT_SAMPLE)
+            .map(|i| 3 * i + 1)
+            .collect();
         let subset = points.subset(&sample).unwrap();
         let all = candidates(&subset, focal);
         assert!(all.iter().any(|f| same_up_to_scale(f, &truth)), "{all:?}");
@@ -224,7 +226,11 @@ mod tests {
                 let run = |choice| solve_and_choose(choice, &subset, points, focal, 2.0);
                 let best = run(MinimalSolutions::Best).expect("a solution");
                 let all = candidates(&subset, focal);
-                assert_eq!(best.f, all[naive_best(points, &all, 2.0)], "sample {sample:?}");
+                assert_eq!(
+                    best.f,
+                    all[naive_best(points, &all, 2.0)],
+                    "sample {sample:?}"
+                );
                 let unpolished = run(MinimalSolutions::BestUnpolished).expect("a root");
                 let (f, polished) = (&unpolished.f, &best.f);
                 let gap = (f / f.norm() - polished / polished.norm()).norm();

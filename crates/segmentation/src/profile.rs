@@ -89,6 +89,19 @@ impl Profile {
 }
 
 impl Params {
+    /// `self` changed by `edit`: a profile with a few keys of its own,
+    /// e.g. `Params::thesis().with(|p| p.sampling.num_samples = 300)`.
+    ///
+    /// ```
+    /// use segmentation::Params;
+    /// let p = Params::thesis().with(|p| p.sampling.num_samples = 300);
+    /// assert_eq!((p.sampling.num_samples, p.focal.method), (300, Params::thesis().focal.method));
+    /// ```
+    pub fn with(mut self, edit: impl FnOnce(&mut Self)) -> Self {
+        edit(&mut self);
+        self
+    }
+
     /// The `fast` profile: the default pipeline with M 400 drawn by guided
     /// sampling in batches of 50 (Multi-GS on co-inlier counts, Chin, Yu &
     /// Suter 2012), one IRLS-Tukey iteration, the winning five-point root
@@ -102,16 +115,15 @@ impl Params {
     /// driving scenes. The rounds that chose it, and the levers that lost,
     /// are in results/README.md, "A fast profile".
     pub fn fast() -> Self {
-        Self {
-            minimal_solver: MinimalSolver::FivePoint,
-            minimal_solutions: MinimalSolutions::BestUnpolished,
-            num_samples: 400,
-            irls_iters: 1,
-            cluster_subset: 200,
-            sampling: Sampling::Guided,
-            guided_batch: 50,
-            ..Self::default()
-        }
+        Self::default().with(|p| {
+            p.sampling.minimal_solver = MinimalSolver::FivePoint;
+            p.sampling.minimal_solutions = MinimalSolutions::BestUnpolished;
+            p.sampling.num_samples = 400;
+            p.sampling.cluster_subset = 200;
+            p.sampling.sampling = Sampling::Guided;
+            p.sampling.guided_batch = 50;
+            p.refinement.irls_iters = 1;
+        })
     }
 
     /// The `large` profile, for real image pairs of 1 000–5 000 matches
@@ -122,11 +134,10 @@ impl Params {
     /// (`cluster_subset = 1000`), chosen on the kitti-real validation
     /// scenes (results/README.md, "Real-sized scenes").
     pub fn large() -> Self {
-        Self {
-            sampling: Sampling::Localized,
-            size_rule: SizeRule::RelativeMin(0.02),
-            cluster_subset: 1000,
-            ..Self::default()
-        }
+        Self::default().with(|p| {
+            p.sampling.sampling = Sampling::Localized;
+            p.sampling.cluster_subset = 1000;
+            p.clustering.size_rule = SizeRule::RelativeMin(0.02);
+        })
     }
 }

@@ -35,7 +35,7 @@ use std::time::Instant;
 ///     p1.push([500.0 * x / z + 320.0, 500.0 * y / z + 240.0]);
 ///     p2.push([500.0 * (x + shift[0]) / z + 320.0, 500.0 * (y + shift[1]) / z + 240.0]);
 /// }
-/// let params = Params { method: Method::Baseline, num_samples: 300, ..Default::default() };
+/// let params = Params::default().with(|q| { q.focal.method = Method::Baseline; q.sampling.num_samples = 300; });
 /// let seg = segment(&Matches::new(&p1, &p2, (640, 480)), &params).unwrap();
 /// assert_eq!(seg.labels.len(), 60);
 /// assert_eq!(seg.counts.generated, 300);
@@ -45,11 +45,11 @@ pub fn segment(matches: &Matches, params: &Params) -> Result<Segmentation, Segme
     params.validate()?;
     clustering_params(params).check_memory(
         params.clustered_matches(matches.len()),
-        params.num_samples,
+        params.sampling.num_samples,
         ASSUMED_PREFERENCE_DENSITY,
     )?;
     let hypotheses = generate_hypotheses(matches, params)?;
-    let focals = (params.method == Method::Semical)
+    let focals = (params.focal.method == Method::Semical)
         .then(|| estimate_hypothesis_focals(&hypotheses, params, matches.focal_prior))
         .transpose()?;
     let mut segmentation = segment_with(matches, params, &hypotheses, focals.as_ref())?;
@@ -92,7 +92,7 @@ pub fn segment_with(
     let mut consensus = None;
     let mut consensus_fallback = false;
     let mut focal_verdict = FocalVerdict::NotEstimated;
-    if let Some(focals) = focals.filter(|_| params.method == Method::Semical) {
+    if let Some(focals) = focals.filter(|_| params.focal.method == Method::Semical) {
         for &j in &refined {
             hypotheses[j].focals = focals.focals[j];
             counts.focal_failures += usize::from(focals.focals[j].is_none());
@@ -148,13 +148,13 @@ fn check_stages(
         && n == subset_len
         && generated.subset.last().map_or(true, |&i| i < matches.len());
     // One hypothesis per minimal sample.
-    if !subset_ok || m != params.num_samples {
+    if !subset_ok || m != params.sampling.num_samples {
         return Err(SegmentationError::StageMismatch(format!(
             "hypotheses generated for {n} points and M = {m}, not {subset_len} and {}",
-            params.num_samples
+            params.sampling.num_samples
         )));
     }
-    if params.method == Method::Semical
+    if params.focal.method == Method::Semical
         && !focals.is_some_and(|f| f.focals.len() == m && f.from_prior.len() == m)
     {
         return Err(SegmentationError::StageMismatch(format!(
@@ -208,8 +208,8 @@ fn cluster_kept(
     let subset_active = generated.subset.len() < matches.len();
     // The inlier sets of the entering hypotheses: the merge's models, and
     // the cluster models that the subset's extension may test against.
-    let keep_inliers = params.final_assignment == FinalAssignment::Merge
-        || (subset_active && params.subset_extension != SubsetExtension::Preference);
+    let keep_inliers = params.selection.final_assignment == FinalAssignment::Merge
+        || (subset_active && params.selection.subset_extension != SubsetExtension::Preference);
     let step7 = build_preferences(generated, kept, params, keep_inliers)?;
     segmentation.timings.preferences = t.elapsed().as_secs_f64();
 
@@ -219,7 +219,7 @@ fn cluster_kept(
     segmentation.timings.clustering = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
-    let (labels, clusters) = match params.final_assignment {
+    let (labels, clusters) = match params.selection.final_assignment {
         FinalAssignment::None => (clustering.labels, clustering.clusters_after_filter),
         FinalAssignment::Merge => with_count(merge_explained(
             &clustering.labels,
@@ -234,8 +234,8 @@ fn cluster_kept(
             labels: &labels,
             clusters,
         };
-        let tau = params.thr_px * params.thr_px;
-        let how = params.subset_extension;
+        let tau = params.refinement.thr_px * params.refinement.thr_px;
+        let how = params.selection.subset_extension;
         let (models, inliers) = (&step7.models, &step7.inliers);
         let labels = extend_labels(&all, subset, models, inliers, tau, how);
         (labels, Cow::Owned(all))
@@ -272,7 +272,7 @@ fn build_preferences(
     keep_inliers: bool,
 ) -> Result<PreferenceStage, SegmentationError> {
     let points = &generated.points;
-    let tau = params.thr_px * params.thr_px;
+    let tau = params.refinement.thr_px * params.refinement.thr_px;
     let mut residuals = vec![0.0; points.len()];
     let mut inliers = InlierBits::new(points.len());
     let mut entering = Vec::with_capacity(kept.len());
@@ -288,7 +288,7 @@ fn build_preferences(
     }
     let models = SampsonModels::new(&entering);
     let preferences = Preferences::from_residual_rows(
-        params.linkage,
+        params.clustering.linkage,
         points.len(),
         models.len(),
         tau,
@@ -320,9 +320,9 @@ const ASSUMED_PREFERENCE_DENSITY: f64 = 0.2;
 /// [`Params::max_memory_mb`].
 fn clustering_params(params: &Params) -> ClusteringParams {
     ClusteringParams {
-        linkage: params.linkage,
-        min_cluster_size: params.min_cluster_size,
-        size_rule: params.size_rule,
+        linkage: params.clustering.linkage,
+        min_cluster_size: params.clustering.min_cluster_size,
+        size_rule: params.clustering.size_rule,
         max_memory_bytes: (params.max_memory_mb > 0).then(|| params.max_memory_mb * 1_000_000),
     }
 }

@@ -9,11 +9,10 @@ use support::{in_pool, matches, quick_scene};
 #[test]
 fn a_memory_bound_refuses_before_sampling_and_names_the_key() {
     let scene = quick_scene(1, 900);
-    let params = Params {
-        max_memory_mb: 1,
-        num_samples: 20_000,
-        ..Params::default()
-    };
+    let params = Params::default().with(|q| {
+        q.max_memory_mb = 1;
+        q.sampling.num_samples = 20_000;
+    });
     let err = segment(&matches(&scene), &params).unwrap_err();
     let SegmentationError::MemoryBound {
         n_points,
@@ -31,15 +30,11 @@ fn a_memory_bound_refuses_before_sampling_and_names_the_key() {
     assert!(*required_mb > 1);
     assert!(err.to_string().contains("max_memory_mb = 1"), "{err}");
     // A bound above the need changes nothing.
-    let roomy = Params {
-        max_memory_mb: 10_000,
-        num_samples: 300,
-        ..Params::default()
-    };
-    let unbounded = Params {
-        max_memory_mb: 0,
-        ..roomy.clone()
-    };
+    let roomy = Params::default().with(|q| {
+        q.max_memory_mb = 10_000;
+        q.sampling.num_samples = 300;
+    });
+    let unbounded = roomy.clone().with(|q| q.max_memory_mb = 0);
     let a = segment(&matches(&scene), &roomy).unwrap();
     let b = segment(&matches(&scene), &unbounded).unwrap();
     assert_eq!(a.labels, b.labels);
@@ -49,10 +44,7 @@ fn a_memory_bound_refuses_before_sampling_and_names_the_key() {
 fn every_profile_segments_a_synthetic_scene_at_any_thread_count() {
     let scene = quick_scene(2, 900);
     for profile in Profile::ALL {
-        let params = Params {
-            num_samples: 300,
-            ..profile.params()
-        };
+        let params = profile.params().with(|q| q.sampling.num_samples = 300);
         let seg = in_pool(1, || segment(&matches(&scene), &params).unwrap());
         assert_eq!(seg.labels.len(), scene.points1.len(), "{profile:?}");
         assert!(seg.labels.iter().any(|&l| l >= 0), "{profile:?}");
@@ -66,15 +58,13 @@ fn merging_only_joins_clusters() {
     use segmentation::FinalAssignment;
     for (category, index) in [(1, 900), (2, 900), (2, 901)] {
         let scene = quick_scene(category, index);
-        let none = Params {
-            num_samples: 300,
-            final_assignment: FinalAssignment::None,
-            ..Params::default()
-        };
-        let merge = Params {
-            final_assignment: FinalAssignment::Merge,
-            ..none.clone()
-        };
+        let none = Params::default().with(|q| {
+            q.sampling.num_samples = 300;
+            q.selection.final_assignment = FinalAssignment::None;
+        });
+        let merge = none
+            .clone()
+            .with(|q| q.selection.final_assignment = FinalAssignment::Merge);
         let a = segment(&matches(&scene), &none).unwrap().labels;
         let b = segment(&matches(&scene), &merge).unwrap().labels;
         // The outliers are the same, and each merged cluster is a union of

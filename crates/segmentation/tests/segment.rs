@@ -12,11 +12,10 @@ use support::{in_pool, matches, quick_scene};
 
 /// The thesis's pipeline (8-point hypotheses) with `method` and M 300.
 fn config(method: Method) -> Params {
-    Params {
-        method,
-        num_samples: 300,
-        ..Params::thesis()
-    }
+    Params::thesis().with(|q| {
+        q.focal.method = method;
+        q.sampling.num_samples = 300;
+    })
 }
 
 fn segment(scene: &Scene, params: &Params) -> Result<Segmentation, SegmentationError> {
@@ -122,10 +121,7 @@ fn labels_do_not_depend_on_the_thread_count() {
     let a = segment(&scene, &config(Method::Baseline)).unwrap();
     let b = segment(
         &scene,
-        &Params {
-            seed: 7,
-            ..config(Method::Baseline)
-        },
+        &config(Method::Baseline).with(|q| q.sampling.seed = 7),
     )
     .unwrap();
     assert_ne!(a.counts.refined, 0);
@@ -136,33 +132,19 @@ fn labels_do_not_depend_on_the_thread_count() {
 fn every_variant_runs_and_labels_every_point() {
     let scene = quick_scene(2, 900);
     let variants = [
-        Params {
-            refine: false,
-            ..config(Method::Semical)
-        },
-        Params {
-            eight_point: EightPoint::Plain,
-            ..config(Method::Semical)
-        },
-        Params {
-            focal_solver: FocalSolver::Bougnoux,
-            ..config(Method::Semical)
-        },
-        Params {
-            focal_solver: FocalSolver::Bougnoux,
-            focal_failure: OnFailure::Prior,
-            ..config(Method::Semical)
-        },
-        Params {
-            local_test: LocalTest::ReferenceCode,
-            focal_failure: OnFailure::Prior,
-            truncate_focals: true,
-            ..config(Method::Semical)
-        },
-        Params {
-            linkage: Linkage::JLinkage,
-            ..config(Method::Baseline)
-        },
+        config(Method::Semical).with(|q| q.refinement.refine = false),
+        config(Method::Semical).with(|q| q.reference_code.eight_point = EightPoint::Plain),
+        config(Method::Semical).with(|q| q.focal.focal_solver = FocalSolver::Bougnoux),
+        config(Method::Semical).with(|q| {
+            q.focal.focal_solver = FocalSolver::Bougnoux;
+            q.reference_code.focal_failure = OnFailure::Prior;
+        }),
+        config(Method::Semical).with(|q| {
+            q.reference_code.local_test = LocalTest::ReferenceCode;
+            q.reference_code.focal_failure = OnFailure::Prior;
+            q.reference_code.truncate_focals = true;
+        }),
+        config(Method::Baseline).with(|q| q.clustering.linkage = Linkage::JLinkage),
     ];
     for v in variants {
         let seg = segment(&scene, &v).unwrap();
@@ -172,14 +154,14 @@ fn every_variant_runs_and_labels_every_point() {
             seg.labels.iter().all(|&l| l == -1 || (0..k).contains(&l)),
             "{v:?}"
         );
-        if !v.refine {
+        if !v.refinement.refine {
             // Raw minimal samples: nothing is lost to refinement.
             assert!(seg
                 .hypotheses
                 .iter()
                 .all(|h| h.status != HypothesisStatus::RefineFailed));
         }
-        if v.focal_failure == OnFailure::Prior {
+        if v.reference_code.focal_failure == OnFailure::Prior {
             assert_eq!(seg.counts.focal_failures, 0, "{v:?}");
             // Every prior stand-in carries exactly the prior.
             let prior = scene.focal_prior();
@@ -189,7 +171,7 @@ fn every_variant_runs_and_labels_every_point() {
                 .filter(|h| h.focals == Some((prior, prior)))
                 .count();
             assert!(seg.counts.focal_priors <= at_prior, "{v:?}");
-            if v.focal_solver == FocalSolver::Bougnoux {
+            if v.focal.focal_solver == FocalSolver::Bougnoux {
                 // A closed-form answer is never exactly the prior: every
                 // hypothesis at the prior is a stand-in, and there are some.
                 assert_eq!(seg.counts.focal_priors, at_prior, "{v:?}");
@@ -198,7 +180,7 @@ fn every_variant_runs_and_labels_every_point() {
         } else {
             assert_eq!(seg.counts.focal_priors, 0, "{v:?}");
         }
-        if v.truncate_focals {
+        if v.reference_code.truncate_focals {
             assert!(seg
                 .hypotheses
                 .iter()
@@ -240,10 +222,7 @@ fn degenerate_input_is_reported_not_panicked_on() {
         .to_string();
     assert!(err.contains("index 3"), "{err}");
 
-    let bad = Params {
-        thr_px: -1.0,
-        ..config(Method::Baseline)
-    };
+    let bad = config(Method::Baseline).with(|q| q.refinement.thr_px = -1.0);
     let err = segment(&quick_scene(1, 900), &bad).unwrap_err().to_string();
     assert!(err.contains("`thr_px`"), "{err}");
 }
@@ -255,11 +234,10 @@ fn five_point_hypotheses_segment_a_synthetic_scene_one_per_sample() {
     let focal = scene.true_focal.unwrap();
     let at_truth = matches(&scene).with_focal_prior(focal);
     for choice in [MinimalSolutions::Best, MinimalSolutions::BestUnpolished] {
-        let params = Params {
-            minimal_solver: MinimalSolver::FivePoint,
-            minimal_solutions: choice,
-            ..config(Method::Baseline)
-        };
+        let params = config(Method::Baseline).with(|q| {
+            q.sampling.minimal_solver = MinimalSolver::FivePoint;
+            q.sampling.minimal_solutions = choice;
+        });
         let seg = segmentation::segment(&at_truth, &params).unwrap();
         assert!(
             me(&scene, &seg) < 0.05,
@@ -273,10 +251,7 @@ fn five_point_hypotheses_segment_a_synthetic_scene_one_per_sample() {
 
 #[test]
 fn the_default_segments_synthetic_scenes_with_five_point_hypotheses() {
-    let params = Params {
-        num_samples: 300,
-        ..Params::default()
-    };
+    let params = Params::default().with(|q| q.sampling.num_samples = 300);
     for (category, index) in [(1, 900), (2, 900), (2, 901)] {
         let scene = quick_scene(category, index);
         let seg = segment(&scene, &params).unwrap();
@@ -295,10 +270,7 @@ fn an_implausible_consensus_is_filtered_all_the_same() {
     use segmentation::{generate_hypotheses, segment_with, FocalVerdict, HypothesisFocals};
     let scene = quick_scene(2, 900);
     let m = matches(&scene);
-    let semical = Params {
-        focal_solver: FocalSolver::External,
-        ..config(Method::Semical)
-    };
+    let semical = config(Method::Semical).with(|q| q.focal.focal_solver = FocalSolver::External);
     let hypotheses = generate_hypotheses(&m, &semical).unwrap();
     // Every hypothesis answers a tiny focal (12 px for a prior of 1024 px),
     // except every tenth, which answers the prior: the consensus is
@@ -321,7 +293,11 @@ fn an_implausible_consensus_is_filtered_all_the_same() {
     for (j, h) in filtered.hypotheses.iter().enumerate() {
         if hypotheses.models[j].is_some() {
             let in_band = j % 10 != 0;
-            assert_eq!(h.status == HypothesisStatus::Kept, in_band, "hypothesis {j}");
+            assert_eq!(
+                h.status == HypothesisStatus::Kept,
+                in_band,
+                "hypothesis {j}"
+            );
         }
     }
 }
@@ -362,11 +338,10 @@ fn without_a_final_assignment_the_labels_are_the_clusterings() {
     use clustering::ClusteringParams;
     use segmentation::{generate_hypotheses, FinalAssignment};
     let scene = quick_scene(2, 901);
-    let params = Params {
-        num_samples: 300,
-        final_assignment: FinalAssignment::None,
-        ..Params::default()
-    };
+    let params = Params::default().with(|q| {
+        q.sampling.num_samples = 300;
+        q.selection.final_assignment = FinalAssignment::None;
+    });
     let seg = segment(&scene, &params).unwrap();
     // The old path by hand: uniform samples (minimal_sample), preferences
     // of every refined hypothesis, T-Linkage and the size filter.
@@ -375,19 +350,19 @@ fn without_a_final_assignment_the_labels_are_the_clusterings() {
     let size = params.sample_size();
     let uniform =
         segmentation::MinimalSampler::new(&scene.points1, segmentation::Sampling::Uniform, size);
-    for j in 0..params.num_samples {
+    for j in 0..params.sampling.num_samples {
         assert_eq!(
-            uniform.sample(params.seed, j, size),
-            segmentation::minimal_sample(params.seed, j, n, size)
+            uniform.sample(params.sampling.seed, j, size),
+            segmentation::minimal_sample(params.sampling.seed, j, n, size)
         );
     }
     let clustering_params = ClusteringParams {
-        linkage: params.linkage,
-        min_cluster_size: params.min_cluster_size,
+        linkage: params.clustering.linkage,
+        min_cluster_size: params.clustering.min_cluster_size,
         ..ClusteringParams::default()
     };
     let mut builder = clustering_params
-        .preference_builder(n, params.thr_px * params.thr_px)
+        .preference_builder(n, params.refinement.thr_px * params.refinement.thr_px)
         .unwrap();
     let mut residuals = vec![0.0; n];
     for model in generated.models.iter().flatten() {
@@ -405,15 +380,11 @@ fn localized_sampling_does_not_depend_on_the_thread_count() {
     let scene = quick_scene(2, 901);
     for base in [
         config(Method::Baseline),
-        Params {
-            num_samples: 300,
-            ..Params::default()
-        },
+        Params::default().with(|q| q.sampling.num_samples = 300),
     ] {
-        let params = Params {
-            sampling: Sampling::Localized,
-            ..base.clone()
-        };
+        let params = base
+            .clone()
+            .with(|q| q.sampling.sampling = Sampling::Localized);
         let one = in_pool(1, || segment(&scene, &params).unwrap());
         let two = in_pool(2, || segment(&scene, &params).unwrap());
         assert_eq!(one.labels, two.labels);
@@ -432,16 +403,12 @@ fn guided_sampling_starts_unguided_and_does_not_depend_on_the_thread_count() {
     use segmentation::{generate_hypotheses, Sampling};
     let scene = quick_scene(2, 901);
     // One batch of all M samples: never guided.
-    let mixed = Params {
-        num_samples: 300,
-        sampling: Sampling::Guided,
-        guided_batch: 300,
-        ..Params::fast()
-    };
-    let guided = Params {
-        guided_batch: 100,
-        ..mixed.clone()
-    };
+    let mixed = Params::fast().with(|q| {
+        q.sampling.num_samples = 300;
+        q.sampling.sampling = Sampling::Guided;
+        q.sampling.guided_batch = 300;
+    });
+    let guided = mixed.clone().with(|q| q.sampling.guided_batch = 100);
     let (h1, h2) = hypotheses_on_one_and_two_threads(&scene, &guided);
     assert_eq!((&h1.models, &h1.fitted), (&h2.models, &h2.fitted));
     let m = generate_hypotheses(&matches(&scene), &mixed).unwrap();
@@ -452,10 +419,7 @@ fn guided_sampling_starts_unguided_and_does_not_depend_on_the_thread_count() {
     let two = in_pool(2, || segment(&scene, &guided).unwrap());
     assert_eq!(one.labels, two.labels);
     assert!(me(&scene, &one) < 0.05, "ME {}", me(&scene, &one));
-    let zero = Params {
-        guided_batch: 0,
-        ..guided
-    };
+    let zero = guided.with(|q| q.sampling.guided_batch = 0);
     assert!(segment(&scene, &zero).is_err());
 }
 
@@ -463,18 +427,12 @@ fn guided_sampling_starts_unguided_and_does_not_depend_on_the_thread_count() {
 fn a_size_rule_above_the_floor_only_removes_clusters() {
     use segmentation::SizeRule;
     let scene = quick_scene(2, 900);
-    let base = Params {
-        num_samples: 300,
-        ..Params::default()
-    };
+    let base = Params::default().with(|q| q.sampling.num_samples = 300);
     let min_size = segment(&scene, &base).unwrap();
     for rule in [SizeRule::RelativeMin(0.05), SizeRule::RelativeMin(0.2)] {
         let seg = segment(
             &scene,
-            &Params {
-                size_rule: rule,
-                ..base.clone()
-            },
+            &base.clone().with(|q| q.clustering.size_rule = rule),
         )
         .unwrap();
         assert!(seg.clusters.len() <= min_size.clusters.len(), "{rule:?}");
@@ -483,10 +441,7 @@ fn a_size_rule_above_the_floor_only_removes_clusters() {
             assert!(b == -1 || a != -1, "{rule:?}");
         }
     }
-    let bad = Params {
-        size_rule: SizeRule::RelativeMin(1.5),
-        ..base
-    };
+    let bad = base.with(|q| q.clustering.size_rule = SizeRule::RelativeMin(1.5));
     assert!(segment(&scene, &bad)
         .unwrap_err()
         .to_string()
@@ -503,12 +458,11 @@ fn clustering_a_subset_recovers_noise_free_labels_at_any_thread_count() {
             SubsetExtension::Preference,
             SubsetExtension::PreferenceExplained,
         ] {
-            let params = Params {
-                num_samples: 300,
-                cluster_subset: truth.len() / 2,
-                subset_extension: how,
-                ..Params::default()
-            };
+            let params = Params::default().with(|q| {
+                q.sampling.num_samples = 300;
+                q.sampling.cluster_subset = truth.len() / 2;
+                q.selection.subset_extension = how;
+            });
             let one = in_pool(1, || segment(&scene, &params).unwrap());
             let two = in_pool(2, || segment(&scene, &params).unwrap());
             let what = format!("{} {how:?}", scene.name);

@@ -32,7 +32,7 @@ fn cell(v: Option<f64>) -> String {
 pub fn run(args: Args) -> Result<()> {
     let LoadedConfig { config, scenes } = args.input.load()?;
     let pipeline = &config.pipeline;
-    let weight_sets = pipeline.params.weight_sets.sets();
+    let weight_sets = pipeline.params.focal.weight_sets.sets();
     let mut out = std::io::stdout().lock();
     writeln!(out, "{HEADER}")?;
     for scene in &scenes {
@@ -51,7 +51,7 @@ pub fn run(args: Args) -> Result<()> {
                     &f,
                     f_prior,
                     &weight_sets,
-                    pipeline.params.max_iters,
+                    pipeline.params.focal.max_iters,
                     OnFailure::Report,
                 )
             });

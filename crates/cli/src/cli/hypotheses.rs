@@ -29,10 +29,10 @@ pub struct Args {
 pub fn run(args: Args) -> Result<()> {
     let LoadedConfig { mut config, scenes } = args.input.load()?;
     if let Some(seed) = args.seed {
-        config.pipeline.params.seed = seed;
+        config.pipeline.params.sampling.seed = seed;
     }
     let pipeline = &config.pipeline;
-    let path = focal_file_path(&args.out, pipeline.params.seed);
+    let path = focal_file_path(&args.out, pipeline.params.sampling.seed);
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).with_context(|| format!("{}", dir.display()))?;
     }

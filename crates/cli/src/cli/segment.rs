@@ -195,7 +195,7 @@ fn summary_text(
             "\n  clustered {clustered} matches drawn at random; the other {} joined by {} (cluster_subset)",
             scene.len() - clustered,
             crate::sweep::format_value(
-                &toml::Value::try_from(params.subset_extension).expect("a switch serializes")
+                &toml::Value::try_from(params.selection.subset_extension).expect("a switch serializes")
             ),
         );
     }
@@ -268,7 +268,7 @@ fn focal_line(
             "\n  no focal consensus: no hypothesis passed the local test, every hypothesis was kept"
                 .to_string()
         }
-        (None, _) if params.minimal_solver == MinimalSolver::FivePoint => format!(
+        (None, _) if params.sampling.minimal_solver == MinimalSolver::FivePoint => format!(
             "\n  no focal filter (baseline); five-point hypotheses at the focal prior {prior:.0} px"
         ),
         (None, _) => "\n  f_peak: none (baseline)".to_string(),

@@ -25,8 +25,8 @@ use std::sync::LazyLock;
 ///
 /// ```
 /// let p: sctl::config::PipelineConfig = toml::from_str("num_samples = 500").unwrap();
-/// assert_eq!(p.params.num_samples, 500);
-/// assert_eq!(p.params.thr_px, 2.5); // Table 1
+/// assert_eq!(p.params.sampling.num_samples, 500);
+/// assert_eq!(p.params.refinement.thr_px, 2.5); // Table 1
 /// assert!(toml::from_str::<sctl::config::PipelineConfig>("num_sample = 5").is_err());
 /// ```
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
@@ -223,17 +223,16 @@ impl PipelineConfig {
     /// The method's parameters for the scene named `scene`: the seed is
     /// [`crate::pipeline::scene_seed`]`(seed, scene)`.
     pub fn scene_params(&self, scene: &str) -> Params {
-        Params {
-            seed: crate::pipeline::scene_seed(self.params.seed, scene),
-            ..self.params()
-        }
+        self.params().with(|q| {
+            q.sampling.seed = crate::pipeline::scene_seed(self.params.sampling.seed, scene)
+        })
     }
 
     /// Checks the ranges serde cannot ([`Params::validate`]) and that
     /// `focal_file` is given with `focal_solver = "external"`.
     pub fn validate(&self) -> Result<(), ParamError> {
         self.params().validate()?;
-        if self.params.focal_solver == FocalSolver::External && self.focal_file.is_empty() {
+        if self.params.focal.focal_solver == FocalSolver::External && self.focal_file.is_empty() {
             return Err(ParamError {
                 key: "focal_file",
                 message: "must name the CSV of focal lengths when focal_solver = \"external\""
@@ -264,7 +263,7 @@ impl PipelineConfig {
     /// let given: toml::Table = toml::from_str("thr_px = 4.0").unwrap();
     /// let read: PipelineConfig = toml::from_str("thr_px = 4.0").unwrap();
     /// let p = read.on_profile(Profile::Thesis, &given).unwrap();
-    /// assert_eq!(p.params(), Params { thr_px: 4.0, ..Params::thesis() });
+    /// assert_eq!(p.params(), Params::thesis().with(|q| q.refinement.thr_px = 4.0));
     /// assert_eq!(p.profile, Profile::Thesis);
     /// ```
     pub fn on_profile(&self, profile: Profile, given: &toml::Table) -> Result<Self, String> {

@@ -43,19 +43,19 @@ fn defaults_are_table_1() {
     let p = &c.pipeline;
     assert_eq!(
         (
-            p.params.num_samples,
-            p.params.mss_size,
-            p.params.thr_px,
-            p.params.tau_diff,
-            p.params.tau_range,
-            p.params.irls_iters
+            p.params.sampling.num_samples,
+            p.params.sampling.mss_size,
+            p.params.refinement.thr_px,
+            p.params.focal.tau_diff,
+            p.params.focal.tau_range,
+            p.params.refinement.irls_iters
         ),
         (3000, 8, 2.5, 0.05, 0.20, 5)
     );
     // The best measured configuration: five-point hypotheses, no filter.
-    assert_eq!(p.params.method, Method::Baseline);
+    assert_eq!(p.params.focal.method, Method::Baseline);
     assert_eq!(
-        p.params.minimal_solver,
+        p.params.sampling.minimal_solver,
         segmentation::MinimalSolver::FivePoint
     );
     assert_eq!(c.compare.against, default_against());
@@ -86,9 +86,12 @@ fn bad_enum_value_names_the_key() {
 #[test]
 fn sampling_and_final_assignment_read_and_reject_bad_values() {
     let c = parse(BASE).unwrap();
-    assert_eq!(c.pipeline.params.sampling, segmentation::Sampling::Uniform);
     assert_eq!(
-        c.pipeline.params.final_assignment,
+        c.pipeline.params.sampling.sampling,
+        segmentation::Sampling::Uniform
+    );
+    assert_eq!(
+        c.pipeline.params.selection.final_assignment,
         segmentation::FinalAssignment::Merge
     );
     let c = parse(&format!(
@@ -96,17 +99,40 @@ fn sampling_and_final_assignment_read_and_reject_bad_values() {
     ))
     .unwrap();
     let p = c.pipeline.params();
-    assert_eq!(p.sampling, segmentation::Sampling::Localized);
-    assert_eq!(p.final_assignment, segmentation::FinalAssignment::None);
+    assert_eq!(p.sampling.sampling, segmentation::Sampling::Localized);
+    assert_eq!(
+        p.selection.final_assignment,
+        segmentation::FinalAssignment::None
+    );
     assert_eq!(PipelineConfig::from_params(p), c.pipeline);
     // Values and keys of variants that were measured and not adopted are
     // refused, named.
     for (line, key, what) in [
-        ("final_assignment = \"merge-refit\"", "final_assignment", "unknown variant `merge-refit`"),
-        ("sampling = \"mixed\"", "sampling", "unknown variant `mixed`"),
-        ("minimal_solver = \"seven-point\"", "minimal_solver", "unknown variant `seven-point`"),
-        ("minimal_solutions = \"all\"", "minimal_solutions", "unknown variant `all`"),
-        ("subset_extension = \"model\"", "subset_extension", "unknown variant `model`"),
+        (
+            "final_assignment = \"merge-refit\"",
+            "final_assignment",
+            "unknown variant `merge-refit`",
+        ),
+        (
+            "sampling = \"mixed\"",
+            "sampling",
+            "unknown variant `mixed`",
+        ),
+        (
+            "minimal_solver = \"seven-point\"",
+            "minimal_solver",
+            "unknown variant `seven-point`",
+        ),
+        (
+            "minimal_solutions = \"all\"",
+            "minimal_solutions",
+            "unknown variant `all`",
+        ),
+        (
+            "subset_extension = \"model\"",
+            "subset_extension",
+            "unknown variant `model`",
+        ),
     ] {
         let err = parse(&format!("{BASE}[pipeline]\n{line}\n")).unwrap_err();
         let msg = err.to_string();
@@ -143,13 +169,13 @@ fn out_of_range_value_names_the_key_and_line() {
 #[test]
 fn weight_sets_accept_presets_and_lists() {
     let c = parse(&format!("{BASE}[pipeline]\nweight_sets = \"hopef\"\n")).unwrap();
-    assert_eq!(c.pipeline.params.weight_sets.sets().len(), 6);
+    assert_eq!(c.pipeline.params.focal.weight_sets.sets().len(), 6);
     let c = parse(&format!(
         "{BASE}[pipeline]\nweight_sets = [[1e-3, 1, 1e-3, 1]]\n"
     ))
     .unwrap();
     assert_eq!(
-        c.pipeline.params.weight_sets.sets(),
+        c.pipeline.params.focal.weight_sets.sets(),
         vec![focal::FocalWeights::new(1e-3, 1.0, 1e-3, 1.0)]
     );
     let err = parse(&format!("{BASE}[pipeline]\nweight_sets = \"kitti\"\n")).unwrap_err();
@@ -197,10 +223,17 @@ fn pipeline_file_reads_the_pipeline_table_of_any_config() {
         format!("{BASE}[pipeline]\nthr_px = 4.5\n[sweep]\nseed = [1, 2]\n"),
     )
     .unwrap();
-    assert_eq!(PipelineConfig::load(&path).unwrap().params.thr_px, 4.5);
+    assert_eq!(
+        PipelineConfig::load(&path)
+            .unwrap()
+            .params
+            .refinement
+            .thr_px,
+        4.5
+    );
     std::fs::write(&path, "[pipeline]\nmethod = \"baseline\"\n").unwrap();
     assert_eq!(
-        PipelineConfig::load(&path).unwrap().params.method,
+        PipelineConfig::load(&path).unwrap().params.focal.method,
         Method::Baseline
     );
     std::fs::write(&path, "[pipline]\nmethod = \"baseline\"\n").unwrap();
@@ -235,7 +268,7 @@ fn size_rule_reads_each_rule_and_rejects_a_bad_fraction() {
         ("{ relative-min = 0.01 }", SizeRule::RelativeMin(0.01)),
     ] {
         let c = parse(&format!("{BASE}[pipeline]\nsize_rule = {text}\n")).unwrap();
-        assert_eq!(c.pipeline.params.size_rule, rule, "{text}");
+        assert_eq!(c.pipeline.params.clustering.size_rule, rule, "{text}");
     }
     let err = parse(&format!(
         "{BASE}[pipeline]\nsize_rule = {{ relative-min = 2.0 }}\n"
@@ -269,19 +302,21 @@ fn profile_gives_the_keys_the_table_does_not() {
     .unwrap();
     assert_eq!(
         c.pipeline.params(),
-        Params {
-            thr_px: 4.0,
-            method: Method::Baseline,
-            ..Params::thesis()
-        }
+        Params::thesis().with(|q| {
+            q.refinement.thr_px = 4.0;
+            q.focal.method = Method::Baseline;
+        })
     );
     // A key given with the default's value still overrides the profile.
     let c = parse(&format!(
         "{BASE}[pipeline]\nprofile = \"thesis\"\nminimal_solver = \"five-point\"\n"
     ))
     .unwrap();
-    assert_eq!(c.pipeline.params.minimal_solver, MinimalSolver::FivePoint);
-    assert_eq!(c.pipeline.params.method, Method::Semical);
+    assert_eq!(
+        c.pipeline.params.sampling.minimal_solver,
+        MinimalSolver::FivePoint
+    );
+    assert_eq!(c.pipeline.params.focal.method, Method::Semical);
 }
 
 #[test]
@@ -322,10 +357,7 @@ fn resolved_config_on_a_profile_reads_back_the_same() {
     .unwrap();
     assert_eq!(
         c.pipeline.params(),
-        Params {
-            thr_px: 3.5,
-            ..Params::fast()
-        }
+        Params::fast().with(|q| q.refinement.thr_px = 3.5)
     );
     let text = c.to_toml();
     assert!(text.contains("profile = \"fast\""), "{text}");
@@ -343,28 +375,19 @@ fn pipeline_file_reads_its_profile_or_the_given_one() {
         "[pipeline]\nprofile = \"thesis\"\nnum_samples = 700\n",
     )
     .unwrap();
-    let thesis = Params {
-        num_samples: 700,
-        ..Params::thesis()
-    };
+    let thesis = Params::thesis().with(|q| q.sampling.num_samples = 700);
     assert_eq!(PipelineConfig::load(&path).unwrap().params(), thesis);
     // A given profile replaces the file's; the file's keys still override.
     let fast = PipelineConfig::load_with_profile(&path, Some(Profile::Fast)).unwrap();
     assert_eq!(
         fast.params(),
-        Params {
-            num_samples: 700,
-            ..Params::fast()
-        }
+        Params::fast().with(|q| q.sampling.num_samples = 700)
     );
     assert_eq!(fast.profile, Profile::Fast);
     let default = PipelineConfig::load_with_profile(&path, Some(Profile::Default)).unwrap();
     assert_eq!(
         default.params(),
-        Params {
-            num_samples: 700,
-            ..Params::default()
-        }
+        Params::default().with(|q| q.sampling.num_samples = 700)
     );
     // No [pipeline] table: the profile's values.
     std::fs::write(&path, "name = \"x\"\n").unwrap();

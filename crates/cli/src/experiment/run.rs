@@ -27,8 +27,10 @@ use std::time::Instant;
 fn check_focal_files(plan: &SweepPlan) -> Result<()> {
     for combination in &plan.combinations {
         let p = &combination.pipeline;
-        if p.params.method == Method::Semical && p.params.focal_solver == FocalSolver::External {
-            let path = focal_file::focal_file_path(&p.focal_file, p.params.seed);
+        if p.params.focal.method == Method::Semical
+            && p.params.focal.focal_solver == FocalSolver::External
+        {
+            let path = focal_file::focal_file_path(&p.focal_file, p.params.sampling.seed);
             focal_file::check_focal_file(&path).map_err(|e| {
                 anyhow::anyhow!(
                     "focal_file: {e} (make it for these hypotheses: `sctl hypotheses`, then the external solver)"

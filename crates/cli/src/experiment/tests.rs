@@ -52,10 +52,10 @@ impl Evaluator for Stand {
         }
         // Scramble completion order across threads.
         std::thread::sleep(Duration::from_millis(
-            ((scene * 7 + p.params.num_samples) % 5) as u64,
+            ((scene * 7 + p.params.sampling.num_samples) % 5) as u64,
         ));
-        let base = ((scene * 37 + p.params.num_samples / 100) % 23) as f64 / 100.0;
-        let me = if p.params.method == Method::Semical {
+        let base = ((scene * 37 + p.params.sampling.num_samples / 100) % 23) as f64 / 100.0;
+        let me = if p.params.focal.method == Method::Semical {
             base * 0.7
         } else {
             base
@@ -80,10 +80,10 @@ impl Evaluator for Stand {
             nmi: 0.6,
         });
         result.set_hypotheses(&HypothesisCounts {
-            generated: p.params.num_samples,
-            refined: p.params.num_samples - 1,
-            local_ok: p.params.num_samples / 2,
-            kept: p.params.num_samples / 3,
+            generated: p.params.sampling.num_samples,
+            refined: p.params.sampling.num_samples - 1,
+            local_ok: p.params.sampling.num_samples / 2,
+            kept: p.params.sampling.num_samples / 3,
             focal_failures: 1,
             focal_priors: 0,
         });
@@ -246,7 +246,7 @@ fn resume_after_interruption_equals_one_run() {
 
     // Resuming a directory written by another configuration is refused.
     let mut other = config();
-    other.pipeline.params.thr_px = 3.0;
+    other.pipeline.params.refinement.thr_px = 3.0;
     let err = run_experiment(&other, &Stand::new(None), &options(&dir, 1, None, true)).unwrap_err();
     assert!(
         err.to_string().contains("written by another configuration"),

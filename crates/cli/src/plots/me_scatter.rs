@@ -125,7 +125,7 @@ pub fn me_scene_pairs(
     values: &RunValues,
     combination: usize,
 ) -> Option<Vec<ScenePair>> {
-    if plan.combinations[combination].pipeline.params.method != Method::Semical {
+    if plan.combinations[combination].pipeline.params.focal.method != Method::Semical {
         return None;
     }
     let mut against = toml::Table::new();

@@ -137,7 +137,7 @@ pub fn me_vs_samples_series(plan: &SweepPlan, values: &RunValues) -> Option<Vec<
             continue;
         };
         let key = plan.params_of(combo.index, &["num_samples", "seed"]);
-        let m = combo.pipeline.params.num_samples;
+        let m = combo.pipeline.params.sampling.num_samples;
         let index = match groups.iter().position(|(k, _)| *k == key) {
             Some(i) => i,
             None => {

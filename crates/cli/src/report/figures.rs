@@ -88,8 +88,8 @@ pub fn write_run_plots(
     let errors = &values.focal_errors;
     for combo in &plan.combinations {
         let c = combo.index;
-        if combo.pipeline.params.method == Method::Semical && !errors[c].is_empty() {
-            let tau_range = combo.pipeline.params.tau_range;
+        if combo.pipeline.params.focal.method == Method::Semical && !errors[c].is_empty() {
+            let tau_range = combo.pipeline.params.focal.tau_range;
             each_format(&run_plot_stem(FOCAL_ERROR_PLOT, plan, c), &|path| {
                 plots::focal_error_histogram(&errors[c], tau_range, path)
             })?;

@@ -141,7 +141,7 @@ fn swept_with(third: &str, bumped: &str, bump: f64) -> (SweepPlan, CsvTable) {
     let col = |name: &str| header.iter().position(|h| h == name).unwrap();
     let mut rows = Vec::new();
     for combo in &plan.combinations {
-        let semical = combo.pipeline.params.method == Method::Semical;
+        let semical = combo.pipeline.params.focal.method == Method::Semical;
         for (s, scene) in ["a", "b"].iter().enumerate() {
             // ME: baseline 0.2 / 0.4 on scenes a / b, semical half of it,
             // and 0.1 lower at M = 500.
@@ -149,7 +149,7 @@ fn swept_with(third: &str, bumped: &str, bump: f64) -> (SweepPlan, CsvTable) {
             if semical {
                 me /= 2.0;
             }
-            if combo.pipeline.params.num_samples == 500 {
+            if combo.pipeline.params.sampling.num_samples == 500 {
                 me -= 0.1;
             }
             if combo.values[2] == bumped {
