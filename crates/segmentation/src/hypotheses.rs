@@ -4,6 +4,7 @@
 use crate::adaptive::{stop_after, SupportTracker};
 use crate::minimal::{solve_and_choose, ScoringSet};
 use crate::subset::sorted_draw;
+use crate::Cancel;
 use crate::{
     subset_indices, CoInlierKernel, CoInliers, EightPoint, Matches, MinimalSampler, MinimalSolver,
     Params, Sampling, SegmentationError,
@@ -88,6 +89,17 @@ pub fn generate_hypotheses(
     matches: &Matches,
     params: &Params,
 ) -> Result<GeneratedHypotheses, SegmentationError> {
+    generate_hypotheses_cancellable(matches, params, &Cancel::new())
+}
+
+/// [`generate_hypotheses`], stopped by `cancel`: once it is set, the
+/// samples and refinements not yet started are skipped and the call
+/// returns [`SegmentationError::Interrupted`].
+pub fn generate_hypotheses_cancellable(
+    matches: &Matches,
+    params: &Params,
+    cancel: &Cancel,
+) -> Result<GeneratedHypotheses, SegmentationError> {
     let all = centred_points(matches, params)?;
     let subset = subset_indices(params.seed, all.len(), params.cluster_subset);
     let (points, pixels1) = if subset.len() == all.len() {
@@ -121,6 +133,7 @@ pub fn generate_hypotheses(
         let t = Instant::now();
         let draw = Draw {
             sampler: &sampler,
+            cancel,
             // Guided after the first batch, by the hypotheses before.
             guide: co_inliers
                 .as_mut()
@@ -139,7 +152,9 @@ pub fn generate_hypotheses(
         sampling_seconds += t.elapsed().as_secs_f64();
 
         let t = Instant::now();
-        let refined = refine_fits(&points, &fits, params);
+        cancel.check()?;
+        let refined = refine_fits(&points, &fits, params, cancel);
+        cancel.check()?;
         let gained = tracker.as_mut().map(|t| t.add_batch(&points, &refined));
         refine_seconds += t.elapsed().as_secs_f64();
         fitted.extend(fits.iter().map(Option::is_some));
@@ -191,6 +206,8 @@ struct SampleFit {
 struct Draw<'a> {
     sampler: &'a MinimalSampler,
     guide: Option<&'a CoInlierKernel>,
+    /// Checked before each sample: once set, the sample is skipped.
+    cancel: &'a Cancel,
 }
 
 impl Draw<'_> {
@@ -210,6 +227,9 @@ fn fit_minimal_samples(
     samples
         .into_par_iter()
         .map(|j| {
+            if draw.cancel.is_cancelled() {
+                return None;
+            }
             let sample = draw.sample(params.seed, j, params.mss_size);
             let subset = points.subset(&sample).ok()?;
             let f = match params.eight_point {
@@ -239,6 +259,9 @@ fn solve_minimal_samples(
     let per_sample: Vec<Vec<Option<SampleFit>>> = samples
         .into_par_iter()
         .map(|j| {
+            if draw.cancel.is_cancelled() {
+                return vec![None];
+            }
             let sample = draw.sample(params.seed, j, size);
             let chosen = match scoring.points.subset(&sample) {
                 Ok(subset) => solve_and_choose(
@@ -285,6 +308,7 @@ fn refine_fits(
     points: &Correspondences,
     fits: &[Option<SampleFit>],
     params: &Params,
+    cancel: &Cancel,
 ) -> Vec<Option<Matrix3<f64>>> {
     if !params.refine {
         return fits
@@ -295,7 +319,7 @@ fn refine_fits(
     let irls = params.irls();
     fits.par_iter()
         .map_init(IrlsWorkspace::new, |ws, fit| {
-            let fit = kept(fit, params)?;
+            let fit = kept(fit, params).filter(|_| !cancel.is_cancelled())?;
             let refined = ws.run(points, &fit.start, Some(&fit.f), &irls).ok()?;
             Some(refined.f)
         })

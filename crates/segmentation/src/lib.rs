@@ -39,13 +39,16 @@
 
 mod adaptive;
 mod assignment;
+mod control;
 mod error;
 mod filter;
 mod focals;
 mod guided;
 mod hypotheses;
 mod input;
+mod input_check;
 mod mean_preference;
+mod memory_guard;
 mod merge;
 mod merge_refit;
 mod minimal;
@@ -61,6 +64,7 @@ mod weight_sets;
 
 pub use adaptive::{SupportTracker, SUPPORT_GAIN};
 pub use assignment::{reassign, recover_outliers, CLUSTER_REFIT_ITERS};
+pub use control::Cancel;
 pub use error::SegmentationError;
 pub use filter::{focal_filter, focal_verdict, FilterOutcome, PLAUSIBLE_FOCAL_RANGE};
 pub use focal::FocalConsensus;
@@ -68,8 +72,14 @@ pub use focals::{
     estimate_focals, estimate_hypothesis_focals, focals_as_used, FocalAnswer, HypothesisFocals,
 };
 pub use guided::{CoInlierKernel, CoInliers};
-pub use hypotheses::{centred_points, generate_hypotheses, GeneratedHypotheses};
+pub use hypotheses::{
+    centred_points, generate_hypotheses, generate_hypotheses_cancellable, GeneratedHypotheses,
+};
 pub use input::{image_centre, Matches};
+pub use input_check::{check_matches, InputWarning, MAX_COORDINATE_PX, OUTSIDE_MARGIN_IMAGES};
+pub use memory_guard::{
+    available_memory, check_available_memory, mem_available, memory_need, MemoryNeed,
+};
 pub use merge::{merge_explained, InlierBits, MERGE_SHARE};
 pub use merge_refit::{merge_anchored, merge_refitted};
 pub use neighbours::EXTENSION_NEIGHBOURS;
@@ -87,5 +97,7 @@ pub use result::{
 pub use sampling::{
     hypothesis_rng, minimal_sample, neighbourhood_size, splitmix64, MinimalSampler,
 };
-pub use segment::{fit_cluster, segment, segment_with};
+pub use segment::{
+    fit_cluster, segment, segment_cancellable, segment_with, segment_with_cancellable,
+};
 pub use subset::{extend_labels, refitted_cluster_models, subset_indices, ClusteredSubset};
