@@ -279,7 +279,10 @@ fn cluster_kept(
 
     // Steps 8–9: linkage and size filter.
     let t = Instant::now();
-    let clustering = clustering_params.try_cluster_owned(step7.preferences)?;
+    let stop = || cancel.is_cancelled();
+    let clustering = clustering_params
+        .try_cluster_owned_until(step7.preferences, &stop)?
+        .ok_or(SegmentationError::Interrupted)?;
     segmentation.timings.clustering = t.elapsed().as_secs_f64();
     cancel.check()?;
 
