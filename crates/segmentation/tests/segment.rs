@@ -238,7 +238,7 @@ fn degenerate_input_is_reported_not_panicked_on() {
     let err = segment(&nan, &config(Method::Baseline))
         .unwrap_err()
         .to_string();
-    assert!(err.contains("index 3"), "{err}");
+    assert!(err.contains("row 3, column x2"), "{err}");
 
     let bad = Params {
         thr_px: -1.0,
