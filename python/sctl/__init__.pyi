@@ -8,6 +8,7 @@ import numpy.typing as npt
 
 __all__ = [
     "Segmentation",
+    "SegmentationWarning",
     "bougnoux",
     "default_params",
     "focals_from_fundamental",
@@ -16,6 +17,7 @@ __all__ = [
     "metrics",
     "sampson_distances",
     "segment",
+    "sift_matches",
     "t_linkage",
 ]
 
@@ -205,3 +207,16 @@ def load_adelaidermf(path: Union[str, os.PathLike[str]], *, images: bool = False
 
 def load_hopef(folder: Union[str, os.PathLike[str]], *, images: bool = False) -> _Scene:
     """One HOPE-F scene folder as arrays."""
+
+class SegmentationWarning(UserWarning):
+    """Something suspicious in the input of ``segment``, which was still
+    segmented: points far outside the image, an image size given as
+    (height, width)."""
+
+_Image = Union[str, os.PathLike, npt.ArrayLike]
+
+def sift_matches(
+    img1: _Image, img2: _Image, ratio: float = 0.8
+) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """SIFT matches (OpenCV) of two images with Lowe's ratio test: (x1, x2),
+    each (N, 2) pixels. Needs the ``opencv`` extra."""

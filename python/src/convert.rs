@@ -5,7 +5,7 @@
 use nalgebra::Matrix3;
 use numpy::ndarray::{Array1, Array2, Array3};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyArrayDyn, PyArrayMethods};
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 
@@ -57,8 +57,40 @@ fn finite_floats(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<(Vec<usize>, Ve
     Ok((shape, values))
 }
 
+/// A `TypeError` for `None` given as, or inside, the array `name` (numpy
+/// would read it as NaN).
+fn no_none(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<()> {
+    let none = |at: String| {
+        PyTypeError::new_err(format!(
+            "{name}: expected an (N, 2) array of pixel coordinates, got None{at}"
+        ))
+    };
+    if obj.is_none() {
+        return Err(none(String::new()));
+    }
+    let np = obj.py().import("numpy")?;
+    // A ragged list is reported by the numeric conversion that follows.
+    let Ok(array) = np.call_method1("asarray", (obj,)) else {
+        return Ok(());
+    };
+    let kind: String = array.getattr("dtype")?.getattr("kind")?.extract()?;
+    if kind != "O" {
+        return Ok(());
+    }
+    let at = np.call_method1(
+        "argwhere",
+        (np.call_method1("equal", (&array, obj.py().None()))?,),
+    )?;
+    if at.len()? == 0 {
+        return Ok(());
+    }
+    let index: Vec<usize> = at.get_item(0)?.extract()?;
+    Err(none(format!(" at row {}", index[0])))
+}
+
 /// An (N, 2) array of finite pixel coordinates.
 pub fn points(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Points> {
+    no_none(obj, name)?;
     let (shape, values) = finite_floats(obj, name)?;
     if shape.len() != 2 || shape[1] != 2 {
         return Err(value_error(format!(

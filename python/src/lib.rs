@@ -17,6 +17,7 @@
 mod convert;
 mod datasets;
 mod focal;
+mod interrupt;
 mod params;
 mod segment;
 mod tools;
@@ -29,6 +30,10 @@ use pyo3::prelude::*;
 fn _sctl(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(segment::segment, m)?)?;
     m.add_class::<segment::Segmentation>()?;
+    m.add(
+        "SegmentationWarning",
+        m.py().get_type::<segment::SegmentationWarning>(),
+    )?;
     m.add_function(wrap_pyfunction!(params::default_params, m)?)?;
     m.add_function(wrap_pyfunction!(focal::focals_from_fundamental, m)?)?;
     m.add_function(wrap_pyfunction!(focal::bougnoux, m)?)?;

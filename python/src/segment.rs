@@ -2,13 +2,43 @@
 //! thesis through `segmentation::segment`).
 
 use crate::convert::{array1, from_json, matrix_array, pair, point_pairs, value_error};
+use crate::interrupt::run_interruptible;
 use crate::params::{params_from_kwargs, profile_from};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyMemoryError, PyUserWarning};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use segmentation::{Matches, Params, StageTimings};
+use segmentation::{Matches, Params, SegmentationError, StageTimings};
+use std::ffi::CString;
 use std::fmt::Write as _;
+
+pyo3::create_exception!(
+    sctl,
+    SegmentationWarning,
+    PyUserWarning,
+    "Something suspicious in the input of ``sctl.segment``, which was still \
+     segmented: points far outside the image, an image size given as \
+     (height, width)."
+);
+
+/// The Python exception of a library error: `MemoryError` for the memory
+/// bounds, `KeyboardInterrupt` for an interruption, `ValueError` otherwise.
+fn segment_error(e: SegmentationError) -> PyErr {
+    match e {
+        SegmentationError::MemoryBound { .. } | SegmentationError::MemoryAvailable { .. } => {
+            PyMemoryError::new_err(e.to_string())
+        }
+        SegmentationError::Interrupted => PyKeyboardInterrupt::new_err(e.to_string()),
+        other => value_error(other.to_string()),
+    }
+}
+
+/// `warnings.warn(message, sctl.SegmentationWarning)` at the caller's line.
+fn warn(py: Python<'_>, message: &str) -> PyResult<()> {
+    let text = CString::new(message.replace('\0', " ")).expect("no NUL left");
+    PyErr::warn(py, &py.get_type::<SegmentationWarning>(), &text, 1)
+}
 
 /// Segments point matches between two images of one camera into rigid
 /// motions by T-Linkage. The default draws its hypotheses as essential
@@ -59,8 +89,23 @@ use std::fmt::Write as _;
 /// ValueError
 ///     For an unknown parameter or profile or a bad value (the message
 ///     names the key),
-///     arrays of the wrong shape or with NaN, or fewer matches than one
+///     arrays of the wrong shape or with NaN, a coordinate beyond 1e6 px
+///     (the message names the row and column), or fewer matches than one
 ///     minimal sample.
+/// TypeError
+///     For ``x1`` or ``x2`` None, or holding None (the message names it).
+/// MemoryError
+///     When the run would need more memory than ``max_memory_mb``, or by
+///     default than the machine has available (the message gives both
+///     figures and what to change).
+/// KeyboardInterrupt
+///     On Ctrl-C: the computation stops within a fraction of a second.
+///
+/// Warns
+/// -----
+/// SegmentationWarning
+///     (a ``UserWarning``) for points far outside the image, or an
+///     ``image_size`` that looks given as (height, width).
 ///
 /// The computation releases the GIL.
 #[pyfunction]
@@ -93,9 +138,13 @@ pub fn segment(
         matches = matches.with_focal_prior(f);
     }
     let params = params_from_kwargs(params, profile_from(profile)?)?;
-    let result = py
-        .detach(|| segmentation::segment(&matches, &params))
-        .map_err(|e| value_error(e.to_string()))?;
+    let result = run_interruptible(py, |cancel| {
+        segmentation::segment_cancellable(&matches, &params, cancel)
+    })?
+    .map_err(segment_error)?;
+    for warning in &result.warnings {
+        warn(py, &warning.to_string())?;
+    }
     Ok(Segmentation {
         labels: array1(py, result.labels.clone()).unbind(),
         principal_point: matches.principal_point,

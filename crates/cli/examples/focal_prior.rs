@@ -95,10 +95,8 @@ fn run(o: &Options) -> Result<(), String> {
         let (mut me, mut me_all, mut runs) = (0.0, 0.0, 0usize);
         for scene in &scenes {
             for &seed in &o.seeds {
-                let params = Params {
-                    seed: scene_seed(seed, &scene.name),
-                    ..base.clone()
-                };
+                let scene_seed = scene_seed(seed, &scene.name);
+                let params = base.clone().with(|q| q.sampling.seed = scene_seed);
                 let (a, b) = scene_me(scene, &params, scale)?;
                 me += a;
                 me_all += b;

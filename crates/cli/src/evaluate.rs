@@ -314,6 +314,7 @@ fn all_outliers(n: usize) -> Segmentation {
         clusters_before_filter: 0,
         timings: StageTimings::default(),
         degenerate: Some("no hypothesis".into()),
+        warnings: Vec::new(),
     }
 }
 

@@ -451,3 +451,35 @@ fn the_summary_says_how_many_matches_were_clustered() {
     assert!(stderr.contains(&line), "{stderr}");
     assert_eq!(String::from_utf8(output.stdout).unwrap().lines().count(), n);
 }
+
+#[test]
+fn input_warnings_go_to_stderr_one_line_each_and_absurd_values_fail() {
+    let dir = tempfile::tempdir().unwrap();
+    let matches = dir.path().join("pair.csv");
+    write_matches(&matches);
+    let params = dir.path().join("params.toml");
+    std::fs::write(&params, "[pipeline]\nnum_samples = 300\n").unwrap();
+    // The size given as (height, width).
+    sctl()
+        .arg("segment")
+        .arg("--matches")
+        .arg(&matches)
+        .args(["--width", "768", "--height", "1024", "--config"])
+        .arg(&params)
+        .assert()
+        .success()
+        .stderr(predicate::str::contains(
+            "pair.csv: every point fits an image of width 1024 and height 768 but not \
+             image_size = (768, 1024)",
+        ));
+    let text = std::fs::read_to_string(&matches).unwrap();
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    lines[3] = "1e200,5,6,7,0".into();
+    std::fs::write(&matches, lines.join("\n")).unwrap();
+    segment_1024x768(&matches)
+        .assert()
+        .failure()
+        .stderr(predicate::str::contains(
+            "match row 2, column x1: coordinate 1e200 is not a finite number",
+        ));
+}

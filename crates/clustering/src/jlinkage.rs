@@ -3,7 +3,9 @@
 
 use crate::distance::jaccard_distance;
 use crate::heap::RUN_CAPACITY;
-use crate::linkage::{agglomerate, labels_from_merges, AgglomerationState, Candidate, Clustering};
+use crate::linkage::{
+    agglomerate_until, labels_from_merges, AgglomerationState, Candidate, Clustering,
+};
 use crate::{BinaryPreferenceMatrix, Merge, SizeRule};
 use std::ops::Range;
 
@@ -39,7 +41,16 @@ pub fn j_linkage(preferences: &BinaryPreferenceMatrix, min_cluster_size: usize) 
 
 /// The merges of J-Linkage, before any size filter.
 pub(crate) fn merge_sequence(preferences: &BinaryPreferenceMatrix) -> Vec<Merge> {
-    agglomerate(BinaryState::new(preferences), RUN_CAPACITY)
+    merge_sequence_until(preferences, &|| false)
+}
+
+/// [`merge_sequence`], stopping early once `stop` returns true
+/// ([`agglomerate_until`]).
+pub(crate) fn merge_sequence_until(
+    preferences: &BinaryPreferenceMatrix,
+    stop: &dyn Fn() -> bool,
+) -> Vec<Merge> {
+    agglomerate_until(BinaryState::new(preferences), RUN_CAPACITY, stop)
 }
 
 /// Bit sets of the clusters (point-major, `words` words each) and their sizes.
@@ -137,6 +148,7 @@ impl AgglomerationState for BinaryState {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::linkage::agglomerate;
     use crate::reference;
 
     /// Runs bounded to very few entries give the reference merges.

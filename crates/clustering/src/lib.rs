@@ -152,18 +152,35 @@ impl ClusteringParams {
         &self,
         preferences: Preferences,
     ) -> Result<Clustering, ClusteringError> {
+        let never = || false;
+        let clustering = self.try_cluster_owned_until(preferences, &never)?;
+        Ok(clustering.expect("a clustering never stopped ends"))
+    }
+
+    /// [`ClusteringParams::try_cluster_owned`], stopped by the caller:
+    /// `stop` is called every few merges (a cheap check, such as a
+    /// cancellation flag's) and once it returns true the clustering ends
+    /// with `Ok(None)`.
+    pub fn try_cluster_owned_until(
+        &self,
+        preferences: Preferences,
+        stop: &dyn Fn() -> bool,
+    ) -> Result<Option<Clustering>, ClusteringError> {
         self.check_problem(&preferences)?;
         let n = preferences.n_points();
         let merges = match preferences {
-            Preferences::Continuous(p) => tlinkage::merge_sequence_owned(p),
-            Preferences::Binary(b) => jlinkage::merge_sequence(&b),
+            Preferences::Continuous(p) => tlinkage::merge_sequence_owned(p, stop),
+            Preferences::Binary(b) => jlinkage::merge_sequence_until(&b, stop),
         };
-        Ok(linkage::labels_from_merges(
+        if stop() {
+            return Ok(None);
+        }
+        Ok(Some(linkage::labels_from_merges(
             n,
             merges,
             self.size_rule,
             self.min_cluster_size,
-        ))
+        )))
     }
 
     /// [`ClusteringParams::validate`], then

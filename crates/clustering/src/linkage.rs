@@ -108,14 +108,33 @@ pub(crate) const ROWS_PER_TASK: usize = 8;
 /// The initial distances are computed in parallel, one task per block of
 /// rows, and collected in row order, so the result does not depend on the
 /// number of threads.
-pub(crate) fn agglomerate<S: AgglomerationState>(mut state: S, run_capacity: usize) -> Vec<Merge> {
+pub(crate) fn agglomerate<S: AgglomerationState>(state: S, run_capacity: usize) -> Vec<Merge> {
+    agglomerate_until(state, run_capacity, &|| false)
+}
+
+/// How many heap pops pass between two calls of [`agglomerate_until`]'s
+/// `stop`.
+const STOP_CADENCE: usize = 64;
+
+/// [`agglomerate`], ending early (with the merges so far) once `stop`,
+/// called every [`STOP_CADENCE`] heap pops, returns true.
+pub(crate) fn agglomerate_until<S: AgglomerationState>(
+    mut state: S,
+    run_capacity: usize,
+    stop: &dyn Fn() -> bool,
+) -> Vec<Merge> {
     let n = state.n_clusters();
     let mut heap = initial_heap(&state, run_capacity.max(1));
     let mut active = vec![true; n];
     let mut version = vec![0u32; n];
     let mut merges = Vec::new();
     let mut fresh = Vec::new();
+    let mut pops = 0usize;
     while let Some(head) = heap.heads.pop() {
+        pops += 1;
+        if pops % STOP_CADENCE == 0 && stop() {
+            break;
+        }
         let owner = head.owner as usize;
         if !active[owner] || version[owner] != head.owner_version {
             continue; // the whole run is stale

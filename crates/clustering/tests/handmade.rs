@@ -347,3 +347,56 @@ fn bad_input_gives_typed_errors() {
         .to_string();
     assert!(message.contains("point 0, hypothesis 1"), "{message}");
 }
+
+#[test]
+fn a_stop_check_ends_the_clustering_early_and_is_called_between_merges() {
+    use std::cell::Cell;
+    let sizes = [150, 170];
+    let (rows, _) = interleave(blocks(&sizes, 6), &sizes);
+    let p = PreferenceMatrix::from_rows(&rows).unwrap();
+    let b = BinaryPreferenceMatrix::from_rows(
+        &rows
+            .iter()
+            .map(|r| r.iter().map(|&v| v > 0.0).collect())
+            .collect::<Vec<_>>(),
+    )
+    .unwrap();
+    for (linkage, preferences) in [
+        (Linkage::TLinkage, Preferences::Continuous(p)),
+        (Linkage::JLinkage, Preferences::Binary(b)),
+    ] {
+        let params = ClusteringParams {
+            linkage,
+            ..Default::default()
+        };
+        let full = params.try_cluster_owned(preferences.clone()).unwrap();
+        // Never stopped: the clustering of try_cluster_owned.
+        let calls = Cell::new(0);
+        let never = || {
+            calls.set(calls.get() + 1);
+            false
+        };
+        let same = params.try_cluster_owned_until(preferences.clone(), &never);
+        assert_eq!(same.unwrap().unwrap().labels, full.labels);
+        assert!(
+            calls.get() >= 2,
+            "{linkage:?}: stop called {} times",
+            calls.get()
+        );
+        // Stopped at its second call: no clustering.
+        let calls = Cell::new(0);
+        let second = || {
+            calls.set(calls.get() + 1);
+            calls.get() >= 2
+        };
+        let stopped = params
+            .try_cluster_owned_until(preferences, &second)
+            .unwrap();
+        assert!(stopped.is_none(), "{linkage:?}");
+        assert_eq!(
+            calls.get(),
+            3,
+            "{linkage:?}: checked once more after the loop"
+        );
+    }
+}

@@ -59,6 +59,51 @@ pub enum SegmentationError {
         /// The bound, MB.
         limit_mb: u64,
     },
+    /// With `max_memory_mb = 0`, the estimated need of the whole run
+    /// ([`crate::memory_need`]) exceeds the memory the machine has
+    /// available ([`crate::available_memory`]).
+    #[error(
+        "{n_matches} matches ({n_clustered} clustered) x {n_hypotheses} hypotheses would need \
+         about {needed_mb} MB (hypotheses {hypotheses_mb} MB, preferences and clustering \
+         {clustering_mb} MB), but only {available_mb} MB are available (MemAvailable): use \
+         fewer matches, cluster a subset (cluster_subset), lower num_samples, or set an explicit \
+         max_memory_mb"
+    )]
+    MemoryAvailable {
+        /// Matches N.
+        n_matches: usize,
+        /// Matches clustered ([`crate::Params::cluster_subset`], or N).
+        n_clustered: usize,
+        /// Hypotheses M.
+        n_hypotheses: usize,
+        /// The whole estimate, MB (rounded up).
+        needed_mb: u64,
+        /// Its hypotheses' part, MB.
+        hypotheses_mb: u64,
+        /// Its preferences' and clustering's part, MB.
+        clustering_mb: u64,
+        /// The memory available, MB (rounded down).
+        available_mb: u64,
+    },
+    /// A coordinate is not finite or beyond [`crate::MAX_COORDINATE_PX`].
+    #[error(
+        "match row {row}, column {column}: coordinate {value:e} is not a finite number within \
+         ±{bound:e} px"
+    )]
+    InvalidCoordinate {
+        /// The match (0-based row of the input).
+        row: usize,
+        /// `x1`, `y1`, `x2` or `y2`.
+        column: &'static str,
+        /// The value.
+        value: f64,
+        /// [`crate::MAX_COORDINATE_PX`].
+        bound: f64,
+    },
+    /// The caller's [`crate::Cancel`] was set; the work done so far is
+    /// dropped.
+    #[error("interrupted")]
+    Interrupted,
 }
 
 impl From<ClusteringError> for SegmentationError {

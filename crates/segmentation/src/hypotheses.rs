@@ -2,6 +2,7 @@
 //! another minimal solver) and the IRLS-Tukey refinement of each.
 
 use crate::minimal::solve_and_choose;
+use crate::Cancel;
 use crate::{
     subset_indices, CoInlierKernel, CoInliers, EightPoint, Matches, MinimalSampler, MinimalSolver,
     Params, Sampling, SegmentationError,
@@ -81,6 +82,17 @@ pub fn generate_hypotheses(
     matches: &Matches,
     params: &Params,
 ) -> Result<GeneratedHypotheses, SegmentationError> {
+    generate_hypotheses_cancellable(matches, params, &Cancel::new())
+}
+
+/// [`generate_hypotheses`], stopped by `cancel`: once it is set, the
+/// samples and refinements not yet started are skipped and the call
+/// returns [`SegmentationError::Interrupted`].
+pub fn generate_hypotheses_cancellable(
+    matches: &Matches,
+    params: &Params,
+    cancel: &Cancel,
+) -> Result<GeneratedHypotheses, SegmentationError> {
     let all = centred_points(matches, params)?;
     let subset = subset_indices(
         params.sampling.seed,
@@ -111,6 +123,7 @@ pub fn generate_hypotheses(
         let t = Instant::now();
         let draw = Draw {
             sampler: &sampler,
+            cancel,
             // Guided after the first batch, by the hypotheses before.
             guide: co_inliers
                 .as_mut()
@@ -131,7 +144,9 @@ pub fn generate_hypotheses(
         sampling_seconds += t.elapsed().as_secs_f64();
 
         let t = Instant::now();
-        let refined = refine_fits(&points, &fits, params);
+        cancel.check()?;
+        let refined = refine_fits(&points, &fits, params, cancel);
+        cancel.check()?;
         refine_seconds += t.elapsed().as_secs_f64();
         fitted.extend(fits.iter().map(Option::is_some));
         models.extend(refined);
@@ -161,6 +176,8 @@ struct SampleFit {
 struct Draw<'a> {
     sampler: &'a MinimalSampler,
     guide: Option<&'a CoInlierKernel>,
+    /// Checked before each sample: once set, the sample is skipped.
+    cancel: &'a Cancel,
 }
 
 impl Draw<'_> {
@@ -180,6 +197,9 @@ fn fit_minimal_samples(
     samples
         .into_par_iter()
         .map(|j| {
+            if draw.cancel.is_cancelled() {
+                return None;
+            }
             let sample = draw.sample(params.sampling.seed, j, params.sampling.mss_size);
             let subset = points.subset(&sample).ok()?;
             let f = match params.reference_code.eight_point {
@@ -208,6 +228,9 @@ fn solve_minimal_samples(
     samples
         .into_par_iter()
         .map(|j| {
+            if draw.cancel.is_cancelled() {
+                return None;
+            }
             let sample = draw.sample(params.sampling.seed, j, size);
             let subset = points.subset(&sample).ok()?;
             let chosen = solve_and_choose(
@@ -230,6 +253,7 @@ fn refine_fits(
     points: &Correspondences,
     fits: &[Option<SampleFit>],
     params: &Params,
+    cancel: &Cancel,
 ) -> Vec<Option<Matrix3<f64>>> {
     if !params.refinement.refine {
         return fits.iter().map(|fit| fit.as_ref().map(|s| s.f)).collect();
@@ -237,7 +261,7 @@ fn refine_fits(
     let irls = params.irls();
     fits.par_iter()
         .map_init(IrlsWorkspace::new, |ws, fit| {
-            let fit = fit.as_ref()?;
+            let fit = fit.as_ref().filter(|_| !cancel.is_cancelled())?;
             let refined = ws.run(points, &fit.start, Some(&fit.f), &irls).ok()?;
             Some(refined.f)
         })

@@ -33,13 +33,16 @@
 //! (hypotheses are computed in the caller's rayon pool).
 
 mod assignment;
+mod control;
 mod error;
 mod filter;
 mod focals;
 mod guided;
 mod hypotheses;
 mod input;
+mod input_check;
 mod mean_preference;
+mod memory_guard;
 mod merge;
 mod minimal;
 mod params;
@@ -51,6 +54,7 @@ mod subset;
 mod variants;
 mod weight_sets;
 
+pub use control::Cancel;
 pub use error::SegmentationError;
 pub use filter::{focal_filter, focal_verdict, FilterOutcome, PLAUSIBLE_FOCAL_RANGE};
 pub use focal::FocalConsensus;
@@ -58,8 +62,14 @@ pub use focals::{
     estimate_focals, estimate_hypothesis_focals, focals_as_used, FocalAnswer, HypothesisFocals,
 };
 pub use guided::{CoInlierKernel, CoInliers};
-pub use hypotheses::{centred_points, generate_hypotheses, GeneratedHypotheses};
+pub use hypotheses::{
+    centred_points, generate_hypotheses, generate_hypotheses_cancellable, GeneratedHypotheses,
+};
 pub use input::{image_centre, Matches};
+pub use input_check::{check_matches, InputWarning, MAX_COORDINATE_PX, OUTSIDE_MARGIN_IMAGES};
+pub use memory_guard::{
+    available_memory, check_available_memory, mem_available, memory_need, MemoryNeed,
+};
 pub use merge::{merge_explained, InlierBits, MERGE_SHARE};
 pub use params::{
     key, ClusterParams, EightPoint, FinalAssignment, FocalKey, FocalParams, FocalSolver,
@@ -76,5 +86,7 @@ pub use result::{
 pub use sampling::{
     hypothesis_rng, minimal_sample, neighbourhood_size, splitmix64, MinimalSampler,
 };
-pub use segment::{fit_cluster, segment, segment_with};
+pub use segment::{
+    fit_cluster, segment, segment_cancellable, segment_with, segment_with_cancellable,
+};
 pub use subset::{extend_labels, subset_indices, ClusteredSubset};

@@ -180,6 +180,10 @@ pub struct Segmentation {
     pub timings: StageTimings,
     /// `None`, or why every point is an outlier.
     pub degenerate: Option<String>,
+    /// What looked wrong in the input that was still segmented
+    /// ([`crate::check_matches`]): points far outside the image, an image
+    /// size given as (height, width).
+    pub warnings: Vec<crate::InputWarning>,
 }
 
 impl Segmentation {

@@ -2,10 +2,12 @@
 //! hypotheses and focals computed beforehand.
 
 use crate::assignment::members;
+use crate::memory_guard::{memory_limit, ASSUMED_PREFERENCE_DENSITY};
 use crate::merge::inlier_words;
 use crate::{
-    centred_points, estimate_hypothesis_focals, extend_labels, focal_filter, generate_hypotheses,
-    merge_explained, ClusterModel, ClusteredSubset, FinalAssignment, FocalVerdict,
+    available_memory, centred_points, check_available_memory, check_matches,
+    estimate_hypothesis_focals, extend_labels, focal_filter, generate_hypotheses_cancellable,
+    merge_explained, Cancel, ClusterModel, ClusteredSubset, FinalAssignment, FocalVerdict,
     GeneratedHypotheses, Hypothesis, HypothesisCounts, HypothesisFocals, HypothesisStatus,
     InlierBits, Matches, Method, Params, Segmentation, SegmentationError, StageTimings,
     SubsetExtension,
@@ -41,18 +43,40 @@ use std::time::Instant;
 /// assert_eq!(seg.counts.generated, 300);
 /// ```
 pub fn segment(matches: &Matches, params: &Params) -> Result<Segmentation, SegmentationError> {
+    segment_cancellable(matches, params, &Cancel::new())
+}
+
+/// [`segment`], stopped by `cancel` (set from another thread): it is
+/// checked between the stages, before each minimal sample and refinement
+/// and before each preference row, and once set the call returns
+/// [`SegmentationError::Interrupted`] (the work so far is dropped).
+///
+/// Before sampling, the coordinates are checked ([`check_matches`]) and
+/// the memory of the run is bounded: by [`Params::max_memory_mb`] when
+/// set, else by the machine's available memory
+/// ([`check_available_memory`] with [`available_memory`]).
+pub fn segment_cancellable(
+    matches: &Matches,
+    params: &Params,
+    cancel: &Cancel,
+) -> Result<Segmentation, SegmentationError> {
     let started = Instant::now();
     params.validate()?;
-    clustering_params(params).check_memory(
+    check_matches(matches)?;
+    clustering_params(params, explicit_limit(params)).check_memory(
         params.clustered_matches(matches.len()),
         params.sampling.num_samples,
         ASSUMED_PREFERENCE_DENSITY,
     )?;
-    let hypotheses = generate_hypotheses(matches, params)?;
+    check_available_memory(matches.len(), params, available_memory())?;
+    cancel.check()?;
+    let hypotheses = generate_hypotheses_cancellable(matches, params, cancel)?;
     let focals = (params.focal.method == Method::Semical)
         .then(|| estimate_hypothesis_focals(&hypotheses, params, matches.focal_prior))
         .transpose()?;
-    let mut segmentation = segment_with(matches, params, &hypotheses, focals.as_ref())?;
+    cancel.check()?;
+    let mut segmentation =
+        segment_with_cancellable(matches, params, &hypotheses, focals.as_ref(), cancel)?;
     segmentation.timings.total = started.elapsed().as_secs_f64();
     Ok(segmentation)
 }
@@ -71,8 +95,20 @@ pub fn segment_with(
     generated: &GeneratedHypotheses,
     focals: Option<&HypothesisFocals>,
 ) -> Result<Segmentation, SegmentationError> {
+    segment_with_cancellable(matches, params, generated, focals, &Cancel::new())
+}
+
+/// [`segment_with`], stopped by `cancel` as [`segment_cancellable`] is.
+pub fn segment_with_cancellable(
+    matches: &Matches,
+    params: &Params,
+    generated: &GeneratedHypotheses,
+    focals: Option<&HypothesisFocals>,
+    cancel: &Cancel,
+) -> Result<Segmentation, SegmentationError> {
     let started = Instant::now();
     params.validate()?;
+    let warnings = check_matches(matches)?;
     check_stages(matches, params, generated, focals)?;
     let mut timings = StageTimings {
         sampling: generated.sampling_seconds,
@@ -125,11 +161,18 @@ pub fn segment_with(
         clusters_before_filter: 0,
         timings,
         degenerate: None,
+        warnings,
     };
+    cancel.check()?;
     if kept.is_empty() {
         segmentation.degenerate = Some(nothing_kept_reason(generated).to_string());
     } else {
-        cluster_kept(&mut segmentation, matches, generated, &kept, params)?;
+        let stages = Stages {
+            generated,
+            kept: &kept,
+            cancel,
+        };
+        cluster_kept(&mut segmentation, matches, stages, params)?;
     }
     segmentation.timings.total = started.elapsed().as_secs_f64() + shared_seconds;
     Ok(segmentation)
@@ -197,12 +240,14 @@ fn nothing_kept_reason(generated: &GeneratedHypotheses) -> &'static str {
 fn cluster_kept(
     segmentation: &mut Segmentation,
     matches: &Matches,
-    generated: &GeneratedHypotheses,
-    kept: &[usize],
+    stages: Stages,
     params: &Params,
 ) -> Result<(), SegmentationError> {
+    let Stages {
+        generated, cancel, ..
+    } = stages;
     let points = &generated.points;
-    let clustering_params = clustering_params(params);
+    let clustering_params = clustering_params(params, memory_limit(params));
     // Step 7: preferences, one point (row) at a time.
     let t = Instant::now();
     let subset_active = generated.subset.len() < matches.len();
@@ -210,13 +255,18 @@ fn cluster_kept(
     // the cluster models that the subset's extension may test against.
     let keep_inliers = params.selection.final_assignment == FinalAssignment::Merge
         || (subset_active && params.selection.subset_extension != SubsetExtension::Preference);
-    let step7 = build_preferences(generated, kept, params, keep_inliers)?;
+    let step7 = build_preferences(stages, params, keep_inliers)?;
     segmentation.timings.preferences = t.elapsed().as_secs_f64();
+    cancel.check()?;
 
     // Steps 8–9: linkage and size filter.
     let t = Instant::now();
-    let clustering = clustering_params.try_cluster_owned(step7.preferences)?;
+    let stop = || cancel.is_cancelled();
+    let clustering = clustering_params
+        .try_cluster_owned_until(step7.preferences, &stop)?
+        .ok_or(SegmentationError::Interrupted)?;
     segmentation.timings.clustering = t.elapsed().as_secs_f64();
+    cancel.check()?;
 
     let t = Instant::now();
     let (labels, clusters) = match params.selection.final_assignment {
@@ -266,11 +316,15 @@ struct PreferenceStage {
 /// (`r ≤ τ`) is computed first, one hypothesis at a time, and returned
 /// (empty otherwise).
 fn build_preferences(
-    generated: &GeneratedHypotheses,
-    kept: &[usize],
+    stages: Stages,
     params: &Params,
     keep_inliers: bool,
 ) -> Result<PreferenceStage, SegmentationError> {
+    let Stages {
+        generated,
+        kept,
+        cancel,
+    } = stages;
     let points = &generated.points;
     let tau = params.refinement.thr_px * params.refinement.thr_px;
     let mut residuals = vec![0.0; points.len()];
@@ -292,7 +346,15 @@ fn build_preferences(
         points.len(),
         models.len(),
         tau,
-        |i, out| models.distances_squared(points.point1(i), points.point2(i), out),
+        |i, out| {
+            // Once cancelled, the rows left are not computed (every
+            // residual above τ) and the caller returns Interrupted.
+            if cancel.is_cancelled() {
+                out.fill(f64::INFINITY);
+            } else {
+                models.distances_squared(points.point1(i), points.point2(i), out);
+            }
+        },
     )?;
     Ok(PreferenceStage {
         preferences,
@@ -308,22 +370,28 @@ fn with_count(labels: Vec<i32>) -> (Vec<i32>, usize) {
     (labels, clusters)
 }
 
-/// The share of non-zero preferences assumed by the memory check made
-/// before sampling: F hypotheses at `thr_px` 2–3 px give 5–20 % on scenes
-/// of several comparable motions. Scenes whose background holds most
-/// matches give more (35–70 % on the kitti-real validation scenes); there
-/// the check after step 7, at the matrix's own density, is the one that
-/// binds.
-const ASSUMED_PREFERENCE_DENSITY: f64 = 0.2;
+/// What steps 7–9 take from the steps before: the hypotheses, the kept
+/// ones and the caller's cancellation flag.
+#[derive(Clone, Copy)]
+struct Stages<'a> {
+    generated: &'a GeneratedHypotheses,
+    kept: &'a [usize],
+    cancel: &'a Cancel,
+}
+
+/// The explicit bound [`Params::max_memory_mb`], bytes (`None` for 0).
+fn explicit_limit(params: &Params) -> Option<u64> {
+    (params.max_memory_mb > 0).then(|| params.max_memory_mb.saturating_mul(1_000_000))
+}
 
 /// The clustering's parameters: linkage, size filter and the memory bound
-/// [`Params::max_memory_mb`].
-fn clustering_params(params: &Params) -> ClusteringParams {
+/// `limit` (bytes).
+fn clustering_params(params: &Params, limit: Option<u64>) -> ClusteringParams {
     ClusteringParams {
         linkage: params.clustering.linkage,
         min_cluster_size: params.clustering.min_cluster_size,
         size_rule: params.clustering.size_rule,
-        max_memory_bytes: (params.max_memory_mb > 0).then(|| params.max_memory_mb * 1_000_000),
+        max_memory_bytes: limit,
     }
 }
 

@@ -220,7 +220,7 @@ fn degenerate_input_is_reported_not_panicked_on() {
     let err = segment(&nan, &config(Method::Baseline))
         .unwrap_err()
         .to_string();
-    assert!(err.contains("index 3"), "{err}");
+    assert!(err.contains("row 3, column x2"), "{err}");
 
     let bad = config(Method::Baseline).with(|q| q.refinement.thr_px = -1.0);
     let err = segment(&quick_scene(1, 900), &bad).unwrap_err().to_string();

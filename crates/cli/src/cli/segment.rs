@@ -133,6 +133,9 @@ pub fn run(args: Args) -> Result<()> {
     let segmentation = crate::experiment::thread_pool(threads)?
         .install(|| segmentation::segment(&matches(&scene), &config.params()))
         .with_context(|| args.matches.display().to_string())?;
+    for warning in &segmentation.warnings {
+        eprintln!("warning: {}: {warning}", args.matches.display());
+    }
     let result = scene_result(&scene, &segmentation, &ground_truth_models(&scene))?;
 
     let labels: String = segmentation.labels.iter().fold(String::new(), |mut s, l| {

@@ -101,7 +101,8 @@ EXPERIMENT FILE (TOML)
   recover_outliers = \"none\"   none | refit (each cluster's F refitted by IRLS; an
                                outlier joins the cluster that explains it best)
   max_memory_mb = 0            > 0: refuse (at once) a scene whose clustering
-                               would need more memory (MB); 0: no bound
+                               would need more memory (MB); 0: refuse a
+                               run needing more than the available memory
   seed = 12345                 sampling seed
 
   [sweep]                      any [pipeline] key as a list; the run is the

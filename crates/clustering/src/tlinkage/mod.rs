@@ -5,7 +5,9 @@ mod kernels;
 
 use crate::distance::{tanimoto_distance, tanimoto_lower_bound};
 use crate::heap::RUN_CAPACITY;
-use crate::linkage::{agglomerate, labels_from_merges, AgglomerationState, Candidate, Clustering};
+use crate::linkage::{
+    agglomerate, agglomerate_until, labels_from_merges, AgglomerationState, Candidate, Clustering,
+};
 use crate::{Merge, PreferenceMatrix, SizeRule};
 use kernels::{avx2_available, bound_margin, quantise, Level, LANES, LEVELS};
 use std::borrow::Cow;
@@ -57,8 +59,12 @@ pub(crate) fn merge_sequence(preferences: &PreferenceMatrix) -> Vec<Merge> {
 /// [`merge_sequence`] on preferences it may consume: each merge writes the
 /// merged vector over the surviving cluster's row and frees the absorbed
 /// one, so the clustering copies no row. The merges are the same.
-pub(crate) fn merge_sequence_owned(preferences: PreferenceMatrix) -> Vec<Merge> {
-    agglomerate(ContinuousState::owning(preferences), RUN_CAPACITY)
+/// The merges stop early once `stop` returns true ([`agglomerate_until`]).
+pub(crate) fn merge_sequence_owned(
+    preferences: PreferenceMatrix,
+    stop: &dyn Fn() -> bool,
+) -> Vec<Merge> {
+    agglomerate_until(ContinuousState::owning(preferences), RUN_CAPACITY, stop)
 }
 
 /// Marks a slot that holds no active cluster.

@@ -74,7 +74,13 @@ pub struct Params {
     /// segmentation stops before drawing a sample when N points and
     /// `num_samples` hypotheses would need more at 20 % non-zero
     /// preferences, and before clustering when the preferences' real
-    /// density does. `0`: no bound. Default 0.
+    /// density does. `0` (default): the bound is the memory the machine
+    /// has available (Linux `MemAvailable`, [`crate::available_memory`]):
+    /// the whole run's need ([`crate::memory_need`]: hypotheses,
+    /// preferences, clustering) is checked against it before sampling
+    /// ([`crate::check_available_memory`]) and the clustering against it
+    /// at the real density; where that figure is unknown (not Linux, or
+    /// `/proc/meminfo` unreadable) there is no bound. Default 0.
     pub max_memory_mb: u64,
 }
 

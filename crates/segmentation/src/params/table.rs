@@ -189,7 +189,7 @@ param_keys! {
         "> 0: steps 1-9 on this many random matches, the others joined after";
     selection.subset_extension: SubsetExtension, Choice, "preference-explained | preference",
         "left-out matches join the nearest mean preference (explained: within thr_px of its model)";
-    limits.max_memory_mb: u64, Int, "", "> 0: refuse a scene whose clustering would need more MB";
+    limits.max_memory_mb: u64, Int, "", "refuse a scene that would need more MB (0: the memory available)";
     sampling.seed: u64, Int, "", "sampling seed";
 }
 
