@@ -3,10 +3,10 @@
 //! and the semi-calibrated pipeline (whose focal stage dominates) at a
 //! smaller M. Per-stage times of real runs are in each run's timings.csv.
 
-use sctl::config::{Method, PipelineConfig};
-use sctl::pipeline::segment;
 use criterion::{criterion_group, criterion_main, Criterion};
 use datasets::synthetic::{generate_scene, SyntheticParams};
+use sctl::config::{Method, PipelineConfig};
+use sctl::pipeline::segment;
 
 fn pipeline(c: &mut Criterion) {
     let scene = generate_scene(&SyntheticParams::default(), 11, 3, "bench").expect("scene");

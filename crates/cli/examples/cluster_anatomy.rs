@@ -15,11 +15,11 @@
 //!     [--config FILE.toml] [--num-samples M] [--seeds 12345,23456,34567]
 //! ```
 
-use sctl::config::PipelineConfig;
-use sctl::pipeline::{matches, scene_seed};
 use datasets::synthetic::Preset;
 use datasets::Scene;
 use geometry::{sampson_distances_squared, Correspondences};
+use sctl::config::PipelineConfig;
+use sctl::pipeline::{matches, scene_seed};
 use segmentation::{segment, subset_indices, Params, Profile};
 use std::process::ExitCode;
 

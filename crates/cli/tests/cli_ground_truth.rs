@@ -5,10 +5,10 @@
 mod support;
 use support::{quickstart, sctl};
 
-use sctl::config::ExperimentConfig;
-use sctl::pipeline::fit_cluster;
 use geometry::Correspondences;
 use predicates::prelude::*;
+use sctl::config::ExperimentConfig;
+use sctl::pipeline::fit_cluster;
 
 /// What `sctl <subcommand> configs/quickstart.toml` prints (it must succeed).
 fn stdout_on_quickstart(subcommand: &str) -> String {

@@ -5,9 +5,9 @@
 mod support;
 use support::{quickstart, same_up_to_scale as same_model, sctl};
 
+use nalgebra::Matrix3;
 use sctl::config::ExperimentConfig;
 use sctl::pipeline::generate_hypotheses;
-use nalgebra::Matrix3;
 use std::path::Path;
 
 /// `sctl run --out OUT EXP` (it must succeed); returns `per_scene.csv`.

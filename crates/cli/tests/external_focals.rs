@@ -4,12 +4,12 @@
 mod support;
 use support::quick_scene;
 
+use datasets::Scene;
+use nalgebra::Matrix3;
 use sctl::config::{FocalSolver, Method, OnFailure, PipelineConfig};
 use sctl::pipeline::{
     estimate_hypothesis_focals, generate_hypotheses, segment, segment_with, PipelineError,
 };
-use datasets::Scene;
-use nalgebra::Matrix3;
 use std::fmt::Write;
 use std::path::Path;
 

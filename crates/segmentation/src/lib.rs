@@ -87,5 +87,5 @@ pub use result::{
 pub use sampling::{
     hypothesis_rng, minimal_sample, neighbourhood_size, splitmix64, MinimalSampler,
 };
-pub use segment::{fit_cluster, segment, segment_with};
+pub use segment::{check_memory, fit_cluster, segment, segment_with};
 pub use subset::{extend_labels, refitted_cluster_models, subset_indices, ClusteredSubset};

@@ -45,11 +45,7 @@ use std::time::Instant;
 pub fn segment(matches: &Matches, params: &Params) -> Result<Segmentation, SegmentationError> {
     let started = Instant::now();
     params.validate()?;
-    clustering_params(params).check_memory(
-        params.clustered_matches(matches.len()),
-        params.num_samples,
-        ASSUMED_PREFERENCE_DENSITY,
-    )?;
+    check_memory(matches.len(), params)?;
     let hypotheses = generate_hypotheses(matches, params)?;
     let focals = (params.method == Method::Semical)
         .then(|| estimate_hypothesis_focals(&hypotheses, params, matches.focal_prior))
@@ -381,6 +377,20 @@ fn with_count(labels: Vec<i32>) -> (Vec<i32>, usize) {
 /// the check after step 7, at the matrix's own density, is the one that
 /// binds.
 const ASSUMED_PREFERENCE_DENSITY: f64 = 0.2;
+
+/// The memory check [`segment`] makes before sampling: the preference
+/// matrix and linkage of `params.num_samples` hypotheses over the matches
+/// clustered of `n_matches`, at [`ASSUMED_PREFERENCE_DENSITY`], against
+/// [`Params::max_memory_mb`] (none when 0). Callers that run the stages
+/// themselves ([`generate_hypotheses`] then [`segment_with`]) call it first.
+pub fn check_memory(n_matches: usize, params: &Params) -> Result<(), SegmentationError> {
+    clustering_params(params).check_memory(
+        params.clustered_matches(n_matches),
+        params.num_samples,
+        ASSUMED_PREFERENCE_DENSITY,
+    )?;
+    Ok(())
+}
 
 /// The clustering's parameters: linkage, size filter and the memory bound
 /// [`Params::max_memory_mb`].

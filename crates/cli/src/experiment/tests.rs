@@ -112,6 +112,7 @@ fn options(dir: &Path, threads: usize, shard: Option<Shard>, resume: bool) -> Ru
         threads,
         shard,
         resume,
+        force: false,
         progress: false,
     }
 }
