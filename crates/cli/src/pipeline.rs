@@ -305,6 +305,50 @@ mod tests {
         assert_eq!(fnv1a64(b"foobar"), 0x85944171f73967e8);
     }
 
+    fn scene_with(points1: Vec<[f64; 2]>) -> Scene {
+        let points2 = points1.clone();
+        Scene {
+            name: "s".into(),
+            points1,
+            points2,
+            image_size: (100, 50),
+            principal_point: [49.5, 24.5],
+            labels: None,
+            true_focal: None,
+            gt_fundamentals: Vec::new(),
+            images: None,
+        }
+    }
+
+    #[test]
+    fn coordinates_are_bounded_by_the_image_size() {
+        // 1e4 sides of 100 px: 1e6 px outside the image is the bound.
+        let ok = scene_with(vec![[-999_999.0, 10.0], [50.0, 20.0]]);
+        let warning = check_coordinates(&ok).unwrap().unwrap();
+        assert!(warning.starts_with("1 of 2 matches"), "{warning}");
+        assert!(warning.contains("match 1: x1 = -999999"), "{warning}");
+        let inside = scene_with(vec![[-100.0, 149.0], [199.0, -50.0]]);
+        assert_eq!(check_coordinates(&inside).unwrap(), None);
+        let absurd = scene_with(vec![[50.0, 20.0], [50.0, 1_000_051.0]]);
+        assert!(matches!(
+            check_coordinates(&absurd),
+            Err(CoordinateError::Absurd {
+                index: 2,
+                name: "y1",
+                ..
+            })
+        ));
+        let nan = scene_with(vec![[50.0, f64::NAN]]);
+        assert!(matches!(
+            check_coordinates(&nan),
+            Err(CoordinateError::NonFinite {
+                index: 1,
+                name: "y1",
+                ..
+            })
+        ));
+    }
+
     #[test]
     fn scenes_of_a_run_draw_different_samples() {
         assert_ne!(scene_seed(1, "x"), scene_seed(1, "y"));

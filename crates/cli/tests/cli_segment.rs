@@ -71,7 +71,18 @@ fn segments_a_match_file_and_writes_one_label_per_row() {
     let m = ClusteringMetrics::compute(&labels, &truth).unwrap();
     assert!(m.me < 0.05, "ME {}", m.me);
 
-    // Without --out the labels go to stdout, the summary to stderr; the
+    // Without --out only the summary is printed, on stdout.
+    let output = segment_1024x768(&matches)
+        .arg("--config")
+        .arg(&params)
+        .output()
+        .unwrap();
+    assert!(output.status.success());
+    let stdout = String::from_utf8(output.stdout).unwrap();
+    assert!(stdout.contains("motion(s) found"), "{stdout}");
+    assert!(!stdout.lines().any(|l| l == "-1" || l == "0"), "{stdout}");
+
+    // With --out - the labels go to stdout, the summary to stderr; the
     // image size may come from the sidecar.
     std::fs::write(dir.path().join("pair.toml"), "width = 1024\nheight = 768\n").unwrap();
     let output = sctl()
@@ -80,7 +91,7 @@ fn segments_a_match_file_and_writes_one_label_per_row() {
         .arg(&matches)
         .arg("--config")
         .arg(&params)
-        .args(["--threads", "1"])
+        .args(["--threads", "1", "--out", "-"])
         .output()
         .unwrap();
     assert!(output.status.success());
@@ -102,7 +113,9 @@ fn segments_a_match_file_and_writes_one_label_per_row() {
             .arg("segment")
             .arg("--matches")
             .arg(file)
-            .args(["--width", "1024", "--height", "768", "--config"])
+            .args([
+                "--width", "1024", "--height", "768", "--out", "-", "--config",
+            ])
             .arg(config)
             .output()
             .unwrap();

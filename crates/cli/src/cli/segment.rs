@@ -184,7 +184,8 @@ pub fn run(args: Args) -> Result<()> {
             let input = matches(&scene).with_focal_prior(focal_prior);
             segmentation::segment(&input, &config.params())
         })
-        .with_context(|| args.matches.display().to_string())?;
+        // The library's message names its cause already: not its chain too.
+        .map_err(|e| anyhow::anyhow!("{}: {e}", args.matches.display()))?;
     let result = scene_result(&scene, &segmentation, &ground_truth_models(&scene))?;
 
     let mut summary = summary_text(
