@@ -125,8 +125,19 @@ const ABOUT: &str = "Finds the independently moving objects in a pair of photos:
 point matches between two views into rigid motions (T-Linkage over fundamental matrices, with \
 semi-calibrated cameras), and evaluates the method on datasets.";
 
+/// After the top-level help: the exit statuses.
+const EXIT_STATUS_HELP: &str = "Exit status: 0 on success, also when standard output is closed \
+by its reader (`sctl ... | head -1`); 1 on an error (one line on stderr) or, for `sctl run` \
+without --allow-failures, when scenes could not be segmented; 2 for a bad command line.";
+
 #[derive(Parser)]
-#[command(name = "sctl", version, about = ABOUT, propagate_version = true)]
+#[command(
+    name = "sctl",
+    version,
+    about = ABOUT,
+    after_help = EXIT_STATUS_HELP,
+    propagate_version = true
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
