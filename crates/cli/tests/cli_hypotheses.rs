@@ -112,7 +112,7 @@ fn writes_the_pipelines_hypotheses_and_reads_focals_back() {
         .lines()
         .filter(|l| {
             l.starts_with("semical,")
-                && l.contains("\"failed: focal file: ")
+                && l.contains("failed: focal file: ")
                 && l.contains("focals_4.csv")
         })
         .count();

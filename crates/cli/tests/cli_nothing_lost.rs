@@ -133,7 +133,7 @@ fn scenes_refused_for_memory_are_reported_and_left_out_of_the_means() {
     let report = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(report.contains("## Failed scenes"), "{report}");
     let per_scene = std::fs::read_to_string(out.join("per_scene.csv")).unwrap();
-    assert_eq!(per_scene.matches(",\"failed: ").count(), 2, "{per_scene}");
+    assert_eq!(per_scene.matches("failed: ").count(), 2, "{per_scene}");
 
     run(&config, &dir.path().join("M2"))
         .arg("--allow-failures")
