@@ -104,10 +104,38 @@ pub fn load_scenes(
     Ok(scenes)
 }
 
+/// Refuses an `index_range` reaching past the AdelaideRMF scenes (indices
+/// `0..count`): clamping it would run fewer scenes than asked without a word.
+fn check_adelaidermf_range(range: Option<[u32; 2]>, count: usize) -> Result<()> {
+    match range {
+        Some([first, last]) if last as usize >= count => bail!(
+            "dataset.index_range = [{first}, {last}]: AdelaideRMF has {count} scenes, \
+             indices 0 to {}",
+            count - 1
+        ),
+        _ => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod range_tests {
+    #[test]
+    fn adelaidermf_ranges_past_the_scenes_are_refused() {
+        assert!(super::check_adelaidermf_range(Some([0, 18]), 19).is_ok());
+        assert!(super::check_adelaidermf_range(None, 19).is_ok());
+        let err = super::check_adelaidermf_range(Some([17, 50]), 19).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "dataset.index_range = [17, 50]: AdelaideRMF has 19 scenes, indices 0 to 18"
+        );
+    }
+}
+
 /// The selected AdelaideRMF sequences.
 fn adelaidermf_scenes(dataset: &DatasetConfig, root: &Path, images: bool) -> Result<Vec<Scene>> {
     let wanted = dataset.scenes.as_deref();
     let data = AdelaideRmf::open(root.join("adelaidermf").join("F"))?;
+    check_adelaidermf_range(dataset.index_range, data.scene_names().len())?;
     let names: Vec<(u32, &str)> = data
         .scene_names()
         .iter()

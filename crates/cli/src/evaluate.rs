@@ -286,12 +286,13 @@ impl Evaluator for PipelineEvaluator {
         let scene = &self.scenes[index];
         let segmentation = match self.segment(index, pipeline) {
             Ok(s) => s,
+            // Refused (memory bound, bad coordinates, focal file): a row
+            // without metrics that says why, left out of the means.
             Err(err) => {
-                // No hypothesis at all: every point is an outlier, and the
-                // row says why.
-                let mut result = scene_result(scene, &all_outliers(scene.len()), &[])?;
-                result.status = err.to_string();
-                return Ok((result, StageTimings::default()));
+                return Ok((
+                    SceneResult::failed(scene, &err.reason()),
+                    StageTimings::default(),
+                ))
             }
         };
         let result = scene_result(scene, &segmentation, &self.gt_models[index])?;
@@ -299,22 +300,6 @@ impl Evaluator for PipelineEvaluator {
             draw_scene_plots(scene, &segmentation, pipeline, plots)?;
         }
         Ok((result, segmentation.timings))
-    }
-}
-
-fn all_outliers(n: usize) -> Segmentation {
-    Segmentation {
-        labels: vec![-1; n],
-        counts: Default::default(),
-        hypotheses: Vec::new(),
-        consensus: None,
-        consensus_fallback: false,
-        focal_verdict: Default::default(),
-        clusters: Vec::new(),
-        clusters_before_filter: 0,
-        timings: StageTimings::default(),
-        degenerate: Some("no hypothesis".into()),
-        warnings: Vec::new(),
     }
 }
 
@@ -384,6 +369,24 @@ mod tests {
 #[cfg(test)]
 mod unknown_labels {
     use super::*;
+    use segmentation::Segmentation;
+
+    /// A segmentation of `n` points that calls every point an outlier.
+    fn all_outliers(n: usize) -> Segmentation {
+        Segmentation {
+            labels: vec![-1; n],
+            counts: Default::default(),
+            hypotheses: Vec::new(),
+            consensus: None,
+            consensus_fallback: false,
+            focal_verdict: Default::default(),
+            clusters: Vec::new(),
+            clusters_before_filter: 0,
+            timings: segmentation::StageTimings::default(),
+            degenerate: Some("no hypothesis".into()),
+            warnings: Vec::new(),
+        }
+    }
 
     fn write_scene(dir: &std::path::Path, name: &str, rows: &[(usize, &str)]) -> Scene {
         let mut text = String::from("x1,y1,x2,y2,label\n");

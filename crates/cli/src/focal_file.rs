@@ -20,12 +20,12 @@ use thiserror::Error;
 #[derive(Debug, Error)]
 pub enum FocalFileError {
     /// The file cannot be opened or its header read.
-    #[error("{}: {source}", file.display())]
+    #[error("{}: {cause}", file.display())]
     Open {
         /// The file.
         file: PathBuf,
         /// The reader's error.
-        source: csv::Error,
+        cause: csv::Error,
     },
     /// The header lacks one of the [`REQUIRED_COLUMNS`].
     #[error("{}: no column `{column}`", file.display())]
@@ -36,14 +36,14 @@ pub enum FocalFileError {
         column: &'static str,
     },
     /// A record cannot be read.
-    #[error("{}: line {line}: {source}", file.display())]
+    #[error("{}: line {line}: {cause}", file.display())]
     Record {
         /// The file.
         file: PathBuf,
         /// 1-based line.
         line: usize,
         /// The reader's error.
-        source: csv::Error,
+        cause: csv::Error,
     },
     /// A field is not a number (or `hypothesis` not an index).
     #[error("{}: line {line}: field `{field}`: `{text}` is not {expected}", file.display())]
@@ -132,9 +132,9 @@ struct FocalFileReader {
 
 /// Opens the focal file at `path` and finds its columns.
 fn open(path: &Path) -> Result<FocalFileReader, FocalFileError> {
-    let opening = |source| FocalFileError::Open {
+    let opening = |cause| FocalFileError::Open {
         file: path.to_path_buf(),
-        source,
+        cause,
     };
     let mut reader = csv::Reader::from_path(path).map_err(opening)?;
     let header = reader.headers().map_err(opening)?;
@@ -228,10 +228,10 @@ pub fn read_scene_focals(
     let mut rows = HashMap::new();
     for (i, record) in reader.records().enumerate() {
         let line = i + 2;
-        let record = record.map_err(|source| FocalFileError::Record {
+        let record = record.map_err(|cause| FocalFileError::Record {
             file: path.to_path_buf(),
             line,
-            source,
+            cause,
         })?;
         if record.get(scene_col) != Some(scene) {
             continue;

@@ -71,7 +71,18 @@ fn segments_a_match_file_and_writes_one_label_per_row() {
     let m = ClusteringMetrics::compute(&labels, &truth).unwrap();
     assert!(m.me < 0.05, "ME {}", m.me);
 
-    // Without --out the labels go to stdout, the summary to stderr; the
+    // Without --out only the summary is printed, on stdout.
+    let output = segment_1024x768(&matches)
+        .arg("--config")
+        .arg(&params)
+        .output()
+        .unwrap();
+    assert!(output.status.success());
+    let stdout = String::from_utf8(output.stdout).unwrap();
+    assert!(stdout.contains("motion(s) found"), "{stdout}");
+    assert!(!stdout.lines().any(|l| l == "-1" || l == "0"), "{stdout}");
+
+    // With --out - the labels go to stdout, the summary to stderr; the
     // image size may come from the sidecar.
     std::fs::write(dir.path().join("pair.toml"), "width = 1024\nheight = 768\n").unwrap();
     let output = sctl()
@@ -80,7 +91,7 @@ fn segments_a_match_file_and_writes_one_label_per_row() {
         .arg(&matches)
         .arg("--config")
         .arg(&params)
-        .args(["--threads", "1"])
+        .args(["--threads", "1", "--out", "-"])
         .output()
         .unwrap();
     assert!(output.status.success());
@@ -102,7 +113,9 @@ fn segments_a_match_file_and_writes_one_label_per_row() {
             .arg("segment")
             .arg("--matches")
             .arg(file)
-            .args(["--width", "1024", "--height", "768", "--config"])
+            .args([
+                "--width", "1024", "--height", "768", "--out", "-", "--config",
+            ])
             .arg(config)
             .output()
             .unwrap();
@@ -313,7 +326,7 @@ fn bad_plot_arguments_name_the_file() {
         .assert()
         .failure()
         .stderr(predicate::str::contains(format!(
-            "{}: JPEG images are not supported: give a PNG image",
+            "{}: cannot decode the image",
             jpeg.display()
         )));
     let small = dir.path().join("small.png");
@@ -370,7 +383,11 @@ fn profile_sets_every_key_the_config_does_not_give() {
     // Labels and summary of `sctl segment` with `args`, but for the summary's
     // last line (the time and memory it took, which vary from run to run).
     let segment = |args: &[&std::ffi::OsStr]| {
-        let output = segment_1024x768(&matches).args(args).output().unwrap();
+        let output = segment_1024x768(&matches)
+            .args(["--out", "-"])
+            .args(args)
+            .output()
+            .unwrap();
         let stderr = String::from_utf8(output.stderr).unwrap();
         assert!(output.status.success(), "{stderr}");
         let (summary, cost) = stderr.trim_end().rsplit_once('\n').unwrap();
@@ -440,6 +457,7 @@ fn the_summary_says_how_many_matches_were_clustered() {
     let output = segment_1024x768(&matches)
         .arg("--config")
         .arg(&config)
+        .args(["--out", "-"])
         .output()
         .unwrap();
     let stderr = String::from_utf8(output.stderr).unwrap();

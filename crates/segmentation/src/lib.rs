@@ -87,6 +87,6 @@ pub use sampling::{
     hypothesis_rng, minimal_sample, neighbourhood_size, splitmix64, MinimalSampler,
 };
 pub use segment::{
-    fit_cluster, segment, segment_cancellable, segment_with, segment_with_cancellable,
+    check_memory, fit_cluster, segment, segment_cancellable, segment_with, segment_with_cancellable,
 };
 pub use subset::{extend_labels, subset_indices, ClusteredSubset};

@@ -63,12 +63,7 @@ pub fn segment_cancellable(
     let started = Instant::now();
     params.validate()?;
     check_matches(matches)?;
-    clustering_params(params, explicit_limit(params)).check_memory(
-        params.clustered_matches(matches.len()),
-        params.sampling.num_samples,
-        ASSUMED_PREFERENCE_DENSITY,
-    )?;
-    check_available_memory(matches.len(), params, available_memory())?;
+    check_memory(matches.len(), params)?;
     cancel.check()?;
     let hypotheses = generate_hypotheses_cancellable(matches, params, cancel)?;
     let focals = (params.focal.method == Method::Semical)
@@ -382,6 +377,22 @@ struct Stages<'a> {
 /// The explicit bound [`Params::max_memory_mb`], bytes (`None` for 0).
 fn explicit_limit(params: &Params) -> Option<u64> {
     (params.max_memory_mb > 0).then(|| params.max_memory_mb.saturating_mul(1_000_000))
+}
+
+/// The memory checks [`segment`] makes before sampling: the preference
+/// matrix and linkage of `num_samples` hypotheses over the matches
+/// clustered of `n_matches`, at [`ASSUMED_PREFERENCE_DENSITY`], against
+/// [`Params::max_memory_mb`] when set, and the whole run's need against the
+/// machine's available memory when it is 0 ([`check_available_memory`]).
+/// Callers that run the stages themselves ([`generate_hypotheses`] then
+/// [`segment_with`]) call it first.
+pub fn check_memory(n_matches: usize, params: &Params) -> Result<(), SegmentationError> {
+    clustering_params(params, explicit_limit(params)).check_memory(
+        params.clustered_matches(n_matches),
+        params.sampling.num_samples,
+        ASSUMED_PREFERENCE_DENSITY,
+    )?;
+    check_available_memory(n_matches, params, available_memory())
 }
 
 /// The clustering's parameters: linkage, size filter and the memory bound

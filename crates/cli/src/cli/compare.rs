@@ -28,6 +28,5 @@ pub fn run(args: Args) -> Result<()> {
     let a = load_side(&args.a, &args.metric, &args.select_a)?;
     let b = load_side(&args.b, &args.metric, &args.select_b)?;
     let comparison = compare(&a, &b, &args.metric)?;
-    print!("{}", render(&a, &b, &comparison));
-    Ok(())
+    super::print_out(&render(&a, &b, &comparison))
 }

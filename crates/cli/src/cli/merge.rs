@@ -19,11 +19,9 @@ pub struct Args {
 pub fn run(args: Args) -> Result<()> {
     let crate::experiment::Merged { out, summary } =
         crate::experiment::merge(&args.dirs, args.out.as_deref())?;
-    print!("{summary}");
-    println!(
-        "merged {} directories into {}",
+    super::print_out(&format!(
+        "{summary}merged {} directories into {}\n",
         args.dirs.len(),
         out.display()
-    );
-    Ok(())
+    ))
 }

@@ -52,7 +52,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         ),
         other => anyhow::Error::new(other),
     })?;
-    println!("{}", serde_json::to_string(&metrics)?);
+    super::print_out(&format!("{}\n", serde_json::to_string(&metrics)?))?;
     Ok(())
 }
 

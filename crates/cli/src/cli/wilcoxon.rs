@@ -88,6 +88,6 @@ pub fn run(args: Args) -> anyhow::Result<()> {
             args.method.display()
         )
     })?;
-    println!("{}", serde_json::to_string(&result)?);
+    super::print_out(&format!("{}\n", serde_json::to_string(&result)?))?;
     Ok(())
 }

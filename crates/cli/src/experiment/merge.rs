@@ -227,6 +227,6 @@ pub fn merge(dirs: &[PathBuf], out: Option<&Path>) -> Result<Merged> {
     for dir in dirs {
         copy_scene_plots(dir, &out)?;
     }
-    let summary = finalize(&out, &config, &plan, &scenes, true)?;
+    let summary = finalize(&out, &config, &plan, &scenes, true)?.summary;
     Ok(Merged { out, summary })
 }

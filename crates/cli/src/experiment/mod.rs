@@ -22,7 +22,7 @@ mod run;
 mod tests;
 mod units;
 
-pub use finalize::finalize;
+pub use finalize::{finalize, FailedUnit};
 pub use merge::{merge, Merged};
 pub use run::run_experiment;
 
@@ -114,6 +114,9 @@ pub struct RunOptions {
     pub shard: Option<Shard>,
     /// Keep the rows already in `per_scene.csv` and run only the others.
     pub resume: bool,
+    /// Replace the results of an earlier run in `out_dir` (without it, and
+    /// without `resume`, a directory holding a run is refused).
+    pub force: bool,
     /// Draw a progress bar on stderr (when it is a terminal).
     pub progress: bool,
 }
@@ -129,6 +132,9 @@ pub struct RunOutcome {
     pub wall_seconds: f64,
     /// The end-of-run table (empty for a shard).
     pub summary: String,
+    /// The units of the run directory that could not be segmented (this
+    /// invocation's and, with `--resume`, earlier ones), in unit order.
+    pub failed: Vec<FailedUnit>,
 }
 
 /// The default run directory: `results/<name>`, or

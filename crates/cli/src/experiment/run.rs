@@ -4,12 +4,12 @@
 use super::units::UnitIndex;
 use super::{
     combination_dir_name, finalize, resolved_config, thread_pool, Evaluator, RunOptions,
-    RunOutcome, ScenePlots,
+    RunOutcome, ScenePlots, Shard,
 };
 use crate::config::{ExperimentConfig, FocalSolver, Method};
 use crate::focal_file;
 use crate::output::{
-    per_scene_header, timing_fields, timings_header, write_atomic, CsvAppender, CsvTable,
+    echo, per_scene_header, timing_fields, timings_header, write_atomic, CsvAppender, CsvTable,
     CONFIG_FILE, PER_SCENE_FILE, PLOTS_DIR, REPORT_FILE, SUMMARY_FILE, TIMINGS_FILE, WILCOXON_FILE,
 };
 use crate::sweep::SweepPlan;
@@ -41,37 +41,106 @@ fn check_focal_files(plan: &SweepPlan) -> Result<()> {
     Ok(())
 }
 
-/// Writes `config.toml` into the run directory `dir`. With `resume` the
-/// directory must hold the same configuration, if any; without it, the
-/// files of an earlier run are removed.
-fn prepare_run_dir(dir: &Path, resolved: &str, resume: bool) -> Result<()> {
+/// The files a run writes into its directory (besides `plots/`).
+const RUN_FILES: [&str; 6] = [
+    CONFIG_FILE,
+    PER_SCENE_FILE,
+    TIMINGS_FILE,
+    SUMMARY_FILE,
+    WILCOXON_FILE,
+    REPORT_FILE,
+];
+
+/// Writes `config.toml` into the run directory `dir`. A directory holding
+/// a run already is refused unless `resume` (then its configuration must
+/// be this one) or `force` (then its files are removed): results are never
+/// lost silently.
+fn prepare_run_dir(dir: &Path, resolved: &str, options: &RunOptions) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("{}: cannot create", dir.display()))?;
     let config_path = dir.join(CONFIG_FILE);
-    if resume {
-        if let Ok(previous) = std::fs::read_to_string(&config_path) {
-            if previous != resolved {
-                bail!(
-                    "{}: written by another configuration; --resume needs the same config and scenes (or use another --out)",
-                    config_path.display()
-                );
-            }
-        }
-    } else {
-        for name in [
-            PER_SCENE_FILE,
-            TIMINGS_FILE,
-            SUMMARY_FILE,
-            WILCOXON_FILE,
-            REPORT_FILE,
-        ] {
+    let previous = std::fs::read_to_string(&config_path).ok();
+    let holds_run = RUN_FILES.iter().any(|name| dir.join(name).exists());
+    if options.force {
+        for name in RUN_FILES {
             let path = dir.join(name);
             if path.exists() {
                 std::fs::remove_file(&path)
                     .with_context(|| format!("{}: cannot remove", path.display()))?;
             }
         }
+    } else if let Some(previous) = previous.as_deref().filter(|p| *p != resolved) {
+        bail!(
+            "{}: holds the results of another configuration ({}); choose another --out, \
+             or --force to replace them",
+            dir.display(),
+            config_difference(previous, resolved)
+        );
+    } else if holds_run && !options.resume {
+        bail!(
+            "{}: holds the results of {}; --resume completes them, --force replaces them",
+            dir.display(),
+            if previous.is_some() {
+                "this configuration"
+            } else {
+                "a run without config.toml"
+            }
+        );
     }
     write_atomic(&config_path, resolved)
+}
+
+/// The keys whose values differ between two `config.toml` texts, as
+/// `key: A there, B here` (at most four, then how many more).
+fn config_difference(there: &str, here: &str) -> String {
+    let flat = |text: &str| {
+        let mut keys = std::collections::BTreeMap::new();
+        if let Ok(table) = text.parse::<toml::Table>() {
+            flatten("", &toml::Value::Table(table), &mut keys);
+        }
+        keys
+    };
+    let (there, here) = (flat(there), flat(here));
+    let missing = "(none)".to_string();
+    let differing: Vec<String> = there
+        .keys()
+        .chain(here.keys())
+        .collect::<std::collections::BTreeSet<_>>()
+        .into_iter()
+        .filter(|k| there.get(*k) != here.get(*k))
+        .map(|k| {
+            let a = there.get(k).unwrap_or(&missing);
+            let b = here.get(k).unwrap_or(&missing);
+            format!("{k}: {} there, {} here", echo(a), echo(b))
+        })
+        .collect();
+    match differing.len() {
+        0 => "the same keys, written differently".to_string(),
+        n if n <= 4 => differing.join("; "),
+        n => format!("{}; and {} more keys", differing[..4].join("; "), n - 4),
+    }
+}
+
+/// `value`'s leaves as `dotted.key → TOML text`.
+fn flatten(
+    prefix: &str,
+    value: &toml::Value,
+    out: &mut std::collections::BTreeMap<String, String>,
+) {
+    match value {
+        toml::Value::Table(table) => {
+            for (k, v) in table {
+                let key = if prefix.is_empty() {
+                    k.clone()
+                } else {
+                    format!("{prefix}.{k}")
+                };
+                flatten(&key, v, out);
+            }
+        }
+        leaf => {
+            out.insert(prefix.to_string(), leaf.to_string());
+        }
+    }
 }
 
 /// The units of this invocation: those of its shard, and of them the ones
@@ -95,7 +164,9 @@ impl Units {
         if options.resume && per_scene_path.exists() {
             let table = CsvTable::read(per_scene_path)?;
             for (r, row) in table.rows.iter().enumerate() {
-                done.insert(index.of(row, per_scene_path, r + 2)?);
+                let unit = index.of(row, per_scene_path, r + 2)?;
+                check_shard(options.shard, unit, scenes, per_scene_path, r + 2)?;
+                done.insert(unit);
             }
         }
         let n_scenes = scenes.len();
@@ -115,6 +186,30 @@ impl Units {
     fn skipped(&self) -> usize {
         self.mine.len() - self.todo.len()
     }
+}
+
+/// Refuses a unit found in `per_scene.csv` that is not part of this
+/// invocation's shard: the directory holds another shard's units, and
+/// resuming into it would mix two shards.
+fn check_shard(
+    shard: Option<Shard>,
+    (combination, scene): (usize, usize),
+    scenes: &[String],
+    file: &Path,
+    line: usize,
+) -> Result<()> {
+    let Some(shard) = shard else { return Ok(()) };
+    if shard.contains(combination * scenes.len() + scene) {
+        return Ok(());
+    }
+    bail!(
+        "{}: row {line} (scene `{}`) is not a unit of shard {}/{}: the directory holds \
+         another shard's results; resume it with its own --shard, or choose another --out",
+        file.display(),
+        scenes[scene],
+        shard.index,
+        shard.count
+    )
 }
 
 /// The progress bar of a run (hidden unless `shown`).
@@ -213,11 +308,7 @@ pub fn run_experiment(
     check_focal_files(&plan)?;
     let scenes = evaluator.scene_names();
     let dir = &options.out_dir;
-    prepare_run_dir(
-        dir,
-        &resolved_config(config, &scenes).to_toml(),
-        options.resume,
-    )?;
+    prepare_run_dir(dir, &resolved_config(config, &scenes).to_toml(), options)?;
     let per_scene_path = dir.join(PER_SCENE_FILE);
     let units = Units::select(&plan, &scenes, options, &per_scene_path)?;
 
@@ -241,11 +332,12 @@ pub fn run_experiment(
     bar.finish_and_clear();
     drop(appenders);
 
-    let summary = finalize(dir, config, &plan, &scenes, options.shard.is_none())?;
+    let finalized = finalize(dir, config, &plan, &scenes, options.shard.is_none())?;
     Ok(RunOutcome {
         evaluated: units.todo.len(),
         skipped: units.skipped(),
         wall_seconds: started.elapsed().as_secs_f64(),
-        summary,
+        summary: finalized.summary,
+        failed: finalized.failed,
     })
 }

@@ -112,6 +112,7 @@ fn options(dir: &Path, threads: usize, shard: Option<Shard>, resume: bool) -> Ru
         threads,
         shard,
         resume,
+        force: false,
         progress: false,
     }
 }
@@ -249,7 +250,8 @@ fn resume_after_interruption_equals_one_run() {
     other.pipeline.params.refinement.thr_px = 3.0;
     let err = run_experiment(&other, &Stand::new(None), &options(&dir, 1, None, true)).unwrap_err();
     assert!(
-        err.to_string().contains("written by another configuration"),
+        err.to_string()
+            .contains("holds the results of another configuration (pipeline.thr_px: "),
         "{err}"
     );
 }

@@ -2,7 +2,7 @@
 
 use anyhow::{bail, Context, Result};
 use std::fs::{File, OpenOptions};
-use std::io::BufWriter;
+use std::io::{BufWriter, Write as _};
 use std::path::{Path, PathBuf};
 
 /// A CSV file held as text cells: a header and rows.
@@ -80,12 +80,44 @@ impl CsvTable {
     }
 }
 
-/// Writes `text` to `path` through `path.tmp` and a rename.
+/// The temporary file a write of `path` goes through: hidden, in the same
+/// directory (so that the rename is atomic), named after `path` and this
+/// process, with `path`'s extension kept (the figure writers choose the
+/// format by it): `dir/.NAME.PID.tmp.EXT`.
+fn temp_path(path: &Path) -> PathBuf {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let ext = path
+        .extension()
+        .map(|e| format!(".{}", e.to_string_lossy()))
+        .unwrap_or_default();
+    path.with_file_name(format!(".{name}.{}.tmp{ext}", std::process::id()))
+}
+
+/// Writes `text` to `path` through a temporary file, synced, and a rename
+/// ([`write_bytes_atomic`]); the error names `path`.
 pub fn write_atomic(path: &Path, text: &str) -> Result<()> {
-    let tmp = path.with_extension("tmp");
-    std::fs::write(&tmp, text).with_context(|| format!("{}: cannot write", tmp.display()))?;
-    std::fs::rename(&tmp, path)
-        .with_context(|| format!("{}: cannot replace with {}", path.display(), tmp.display()))
+    write_bytes_atomic(path, text.as_bytes())
+        .with_context(|| format!("{}: cannot write", path.display()))
+}
+
+/// Writes `bytes` to `path` through its [`temp_path`], synced, and a
+/// rename: a failure (a full disk, a file-size limit, a crash) leaves the
+/// old file or none, never a partial one, and removes the temporary file.
+pub fn write_bytes_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let tmp = temp_path(path);
+    let result = File::create(&tmp)
+        .and_then(|mut file| {
+            file.write_all(bytes)?;
+            file.sync_all()
+        })
+        .and_then(|()| std::fs::rename(&tmp, path));
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
 }
 
 /// Appends CSV rows to a file, flushing after every row.

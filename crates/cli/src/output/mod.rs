@@ -18,7 +18,7 @@ mod scene_result;
 #[path = "../../tests/support/schema.rs"]
 mod test_schema;
 
-pub use csv_table::{write_atomic, CsvAppender, CsvTable};
+pub use csv_table::{write_atomic, write_bytes_atomic, CsvAppender, CsvTable};
 pub use scene_result::SceneResult;
 
 /// Per-scene results, one row per (combination, scene).
@@ -118,5 +118,31 @@ mod examples {
     fn params_file_name_example() {
         let name = crate::output::params_file_name(&[("method", "semical"), ("tau_range", "0.1")]);
         assert_eq!(name, "method-semical__tau_range-0.1");
+    }
+}
+
+/// The longest value an error message echoes whole, in characters.
+pub const ECHO_MAX_CHARS: usize = 80;
+
+/// `text` as an error message echoes it: whole up to [`ECHO_MAX_CHARS`]
+/// characters, else its first ones, an ellipsis and its length (a 10 MB
+/// field must not be printed back whole).
+pub fn echo(text: &str) -> String {
+    let chars = text.chars().count();
+    if chars <= ECHO_MAX_CHARS {
+        return text.to_string();
+    }
+    let head: String = text.chars().take(ECHO_MAX_CHARS).collect();
+    format!("{head}… ({chars} characters)")
+}
+
+#[cfg(test)]
+mod echo_tests {
+    #[test]
+    fn long_values_are_cut_with_their_length() {
+        assert_eq!(super::echo("1.5e3"), "1.5e3");
+        let long = "9".repeat(10_000_000);
+        let echoed = super::echo(&long);
+        assert_eq!(echoed, format!("{}… (10000000 characters)", "9".repeat(80)));
     }
 }

@@ -83,9 +83,14 @@ pub struct SceneResult {
     /// the local test); empty when no focal was estimated.
     pub focal_verdict: String,
     /// `ok` (`ok (focal filter kept all)` when nothing passed the focal
-    /// filter) or why every point is an outlier.
+    /// filter), why every point is an outlier, or `failed: REASON` when the
+    /// scene could not be segmented (refused for memory, bad input): no
+    /// metrics then, and the summaries leave the row out of their means.
     pub status: String,
 }
+
+/// The start of the `status` of a scene that could not be segmented.
+pub const FAILED_STATUS: &str = "failed: ";
 
 impl SceneResult {
     /// The column names, in order: the field names.
@@ -102,6 +107,24 @@ impl SceneResult {
             .iter()
             .map(str::to_string)
             .collect()
+    }
+
+    /// The row of a scene that could not be segmented: its size and ground
+    /// truth counts, no metrics, and `status` [`FAILED_STATUS`]`reason`.
+    pub fn failed(scene: &datasets::Scene, reason: &str) -> Self {
+        Self {
+            scene: scene.name.clone(),
+            n: scene.len(),
+            gt_motions: scene.labels.as_ref().map(|_| scene.num_motions()),
+            gt_outliers: scene.labels.as_ref().map(|_| scene.num_outliers()),
+            status: format!("{FAILED_STATUS}{reason}"),
+            ..Self::default()
+        }
+    }
+
+    /// Why the scene could not be segmented, for a [`SceneResult::failed`] row.
+    pub fn failure(&self) -> Option<&str> {
+        self.status.strip_prefix(FAILED_STATUS)
     }
 
     /// Sets the label metrics (docs/method.md "Metrics").

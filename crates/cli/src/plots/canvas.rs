@@ -3,6 +3,7 @@
 //! helpers.
 
 use super::*;
+use crate::output::write_bytes_atomic;
 use image::{ImageFormat, RgbImage};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -83,12 +84,14 @@ pub(super) fn render(figure: &impl Figure, path: &Path) -> Result<(), PlotError>
             }
             let image = RgbImage::from_raw(width, height, buffer)
                 .ok_or_else(|| drawing("the pixel buffer does not match the figure size".into()))?;
+            let mut png = std::io::Cursor::new(Vec::new());
             image
-                .save_with_format(path, ImageFormat::Png)
-                .map_err(|source| PlotError::Png {
+                .write_to(&mut png, ImageFormat::Png)
+                .map_err(|cause| PlotError::Png {
                     path: path.to_path_buf(),
-                    source,
-                })
+                    cause,
+                })?;
+            write_file(path, png.get_ref())
         }
         PlotFormat::Svg => {
             let mut svg = String::new();
@@ -99,9 +102,9 @@ pub(super) fn render(figure: &impl Figure, path: &Path) -> Result<(), PlotError>
                     .map_err(|e| drawing(e.to_string()))?;
                 root.present().map_err(|e| drawing(e.to_string()))?;
             }
-            let underlay = figure.svg_underlay().map_err(|source| PlotError::Png {
+            let underlay = figure.svg_underlay().map_err(|cause| PlotError::Png {
                 path: path.to_path_buf(),
-                source,
+                cause,
             })?;
             if let Some(underlay) = underlay {
                 let end_of_open_tag = svg
@@ -109,12 +112,18 @@ pub(super) fn render(figure: &impl Figure, path: &Path) -> Result<(), PlotError>
                     .ok_or_else(|| drawing("the SVG document has no root element".into()))?;
                 svg.insert_str(end_of_open_tag + 1, &format!("\n{underlay}"));
             }
-            std::fs::write(path, svg).map_err(|source| PlotError::Write {
-                path: path.to_path_buf(),
-                source,
-            })
+            write_file(path, svg.as_bytes())
         }
     }
+}
+
+/// Writes a figure's bytes through a temporary file and a rename
+/// ([`write_bytes_atomic`]): a full disk leaves no partial figure.
+fn write_file(path: &Path, bytes: &[u8]) -> Result<(), PlotError> {
+    write_bytes_atomic(path, bytes).map_err(|cause| PlotError::Write {
+        path: path.to_path_buf(),
+        cause,
+    })
 }
 
 pub(super) fn invalid(path: &Path, message: String) -> PlotError {

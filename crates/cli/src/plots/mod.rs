@@ -74,21 +74,21 @@ pub enum PlotError {
         /// plotters' error.
         message: String,
     },
-    /// The SVG file could not be written.
-    #[error("{}: cannot write the SVG file: {source}", path.display())]
+    /// The figure file could not be written.
+    #[error("{}: cannot write the figure: {cause}", path.display())]
     Write {
         /// The output path.
         path: PathBuf,
         /// The I/O error.
-        source: std::io::Error,
+        cause: std::io::Error,
     },
-    /// The PNG could not be encoded or written.
-    #[error("{}: cannot write the PNG file: {source}", path.display())]
+    /// The PNG could not be encoded, or an image read for it decoded.
+    #[error("{}: cannot make the image: {cause}", path.display())]
     Png {
         /// The output path.
         path: PathBuf,
         /// The encoder's error.
-        source: image::ImageError,
+        cause: image::ImageError,
     },
 }
 

@@ -38,7 +38,28 @@ pub fn render_report(
     write_metrics(&mut md, plan, values);
     write_wilcoxon(&mut md, plan, tests);
     write_me_per_scene(&mut md, ctx, plan, values);
+    write_failures(&mut md, plan, values);
     md
+}
+
+/// The scenes that could not be segmented, per combination, with why
+/// (they are left out of every mean above).
+fn write_failures(md: &mut String, plan: &SweepPlan, values: &RunValues) {
+    let total: usize = values.failed.iter().map(Vec::len).sum();
+    if total == 0 {
+        return;
+    }
+    let _ = writeln!(
+        md,
+        "## Failed scenes\n\n{total} (scene, combination) unit(s) could not be segmented; \
+         they are left out of every mean and test above.\n"
+    );
+    for combo in &plan.combinations {
+        for (scene, reason) in &values.failed[combo.index] {
+            let _ = writeln!(md, "- `{scene}` ({}): {reason}", plan.label(combo.index));
+        }
+    }
+    md.push('\n');
 }
 
 /// The title, the description and what the run covers.

@@ -58,8 +58,12 @@ impl MeanStd {
 /// The per-scene values of one run, indexed by combination.
 #[derive(Debug, Clone)]
 pub struct RunValues {
-    /// For each combination: the scenes it has rows for, in row order.
+    /// For each combination: the scenes it has results for, in row order
+    /// (the failed ones are in `failed`).
     pub scenes: Vec<Vec<String>>,
+    /// For each combination: the scenes that failed ([`SceneResult::failure`]),
+    /// with the reason, in row order; left out of every mean.
+    pub failed: Vec<Vec<(String, String)>>,
     /// For each combination and each of [`SUMMARY_METRICS`]: (scene, value).
     pub metrics: Vec<Vec<Vec<(String, f64)>>>,
     /// For each combination: generated hypotheses per scene.
@@ -139,6 +143,7 @@ impl RunValues {
         let c = plan.combinations.len();
         let mut out = Self {
             scenes: vec![Vec::new(); c],
+            failed: vec![Vec::new(); c],
             metrics: vec![vec![Vec::new(); SUMMARY_METRICS.len()]; c],
             generated: vec![Vec::new(); c],
             kept: vec![Vec::new(); c],
@@ -155,6 +160,10 @@ impl RunValues {
                 )
             })?;
             let result = SceneResult::from_cells(&table.header[k..], &row[k..], file, r + 2)?;
+            if let Some(reason) = result.failure() {
+                out.failed[combo].push((result.scene.clone(), reason.to_string()));
+                continue;
+            }
             for (m, name) in SUMMARY_METRICS.iter().enumerate() {
                 if let Some(v) = metric(&result, name) {
                     out.metrics[combo][m].push((result.scene.clone(), v));

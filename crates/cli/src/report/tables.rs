@@ -32,6 +32,7 @@ pub fn summary_table(plan: &SweepPlan, values: &RunValues) -> CsvTable {
             "focal_judged_scenes",
             "focal_implausible_scenes",
             "focal_none_scenes",
+            "failed_scenes",
         ]
         .iter()
         .map(|s| s.to_string()),
@@ -55,7 +56,15 @@ pub fn summary_table(plan: &SweepPlan, values: &RunValues) -> CsvTable {
         row.push(cell(mean(&values.generated[c]), 2));
         row.push(cell(mean(&values.kept[c]), 2));
         let verdicts = values.focal_verdicts[c];
-        row.extend([verdicts.judged, verdicts.implausible, verdicts.none].map(|v| v.to_string()));
+        row.extend(
+            [
+                verdicts.judged,
+                verdicts.implausible,
+                verdicts.none,
+                values.failed[c].len(),
+            ]
+            .map(|v| v.to_string()),
+        );
         rows.push(row);
     }
     CsvTable { header, rows }
