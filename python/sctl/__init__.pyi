@@ -67,8 +67,6 @@ class Segmentation:
     def focal_verdict(self) -> Optional[Literal["plausible", "implausible", "none"]]:
         """f_peak against 0.3-3 x the focal prior; None without a focal stage."""
     @property
-    def focal_abstained(self) -> bool: ...
-    @property
     def consensus(self) -> Optional[Dict[str, Any]]: ...
     @property
     def hypothesis_status(self) -> List[str]: ...
@@ -92,50 +90,39 @@ def segment(
     principal_point: Optional[Tuple[float, float]] = None,
     focal_prior: Optional[float] = None,
     profile: _Profile = "default",
-    seed: int = 12345,
+    # keys: generated from segmentation::KEYS, see crates/cli/src/config/keys.rs
     method: Literal["baseline", "semical"] = "baseline",
     num_samples: int = 3000,
-    adaptive_batch: int = 0,
-    adaptive_tolerance: float = 0.01,
     mss_size: int = 8,
     thr_px: float = 2.5,
     tau_diff: float = 0.05,
     tau_range: float = 0.2,
     irls_iters: int = 5,
-    irls_fit: str = "normalized",
+    irls_fit: Literal["normalized", "plain"] = "normalized",
     irls_unit_weight_fallback: bool = True,
     irls_sigma_offset_px: float = 0.0,
     irls_polish: bool = False,
     refine: bool = True,
     eight_point: Literal["normalized", "plain"] = "normalized",
-    minimal_solver: Literal["five-point", "eight-point", "seven-point", "six-point-focal"] = "five-point",
-    minimal_solutions: Literal["best", "all", "best-then-polish", "best-unpolished"] = "best",
-    min_consensus: int = 0,
-    preselect_matches: int = 0,
-    sampling: Literal["uniform", "localized", "mixed", "guided"] = "uniform",
+    minimal_solver: Literal["five-point", "eight-point"] = "five-point",
+    minimal_solutions: Literal["best", "best-unpolished"] = "best",
+    sampling: Literal["uniform", "localized", "guided"] = "uniform",
     guided_batch: int = 100,
-    focal_solver: Literal["kocur", "bougnoux"] = "kocur",
-    weight_sets: _WeightSets = "adelaidermf",
+    focal_solver: Literal["kocur", "bougnoux", "external"] = "kocur",
+    weight_sets: Union[Literal["adelaidermf", "hopef"], Sequence[Sequence[float]]] = "adelaidermf",
     max_iters: int = 100,
     focal_failure: Literal["report", "prior"] = "report",
     truncate_focals: bool = False,
     local_test: Literal["algorithm1", "reference-code"] = "algorithm1",
-    implausible_focal: Literal["filter", "abstain"] = "filter",
     linkage: Literal["t-linkage", "j-linkage"] = "t-linkage",
     min_cluster_size: int = 8,
-    size_rule: Union[Literal["min-size", "largest-gap"], Dict[str, float]] = "min-size",
-    final_assignment: Literal["merge", "none", "refit"] = "merge",
-    duplicate_filter: Literal["none", "same-inliers"] = "none",
+    size_rule: Union[Literal["min-size"], Dict[str, float]] = "min-size",
+    final_assignment: Literal["none", "merge"] = "merge",
     cluster_subset: int = 0,
-    subset_extension: Literal[
-        "preference-explained",
-        "preference",
-        "model",
-        "preference-refit",
-        "model-refit",
-        "neighbours",
-    ] = "preference-explained",
+    subset_extension: Literal["preference-explained", "preference"] = "preference-explained",
     max_memory_mb: int = 0,
+    seed: int = 12345,
+    # end of the keys
 ) -> Segmentation:
     """Segments matches into rigid motions (T-Linkage of five-point
     hypotheses at the focal prior; the thesis: method="semical",

@@ -48,9 +48,13 @@ fn solver_options(
             options.focal_prior
         )));
     }
-    Params::default().with(|q| { q.focal.weight_sets = options.weight_sets.clone(); q.focal.max_iters = options.max_iters; })
-    .validate()
-    .map_err(|e| value_error(e.to_string()))?;
+    Params::default()
+        .with(|q| {
+            q.focal.weight_sets = options.weight_sets.clone();
+            q.focal.max_iters = options.max_iters;
+        })
+        .validate()
+        .map_err(|e| value_error(e.to_string()))?;
     Ok(options)
 }
 

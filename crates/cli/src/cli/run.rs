@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 
 /// Options of `sctl run`.
 #[derive(clap::Args)]
-#[command(after_long_help = CONFIG_KEYS_HELP)]
+#[command(after_long_help = CONFIG_KEYS_HELP.as_str())]
 pub struct Args {
     /// The experiment file (TOML; every key is listed under --help).
     pub config: PathBuf,

@@ -1,8 +1,15 @@
 //! The text of every key of an experiment file, for `sctl run --help`,
-//! tested against the keys of the tables it documents.
+//! tested against the keys of the tables it documents; the `[pipeline]`
+//! keys come from the key table ([`super::keys::pipeline_help`]).
+
+use std::sync::LazyLock;
 
 /// Every key of an experiment file, for `sctl run --help`.
-pub const CONFIG_KEYS_HELP: &str = "\
+pub static CONFIG_KEYS_HELP: LazyLock<String> =
+    LazyLock::new(|| format!("{HEAD}{}{TAIL}", super::keys::pipeline_help()));
+
+/// The help before the `[pipeline]` keys.
+const HEAD: &str = "\
 EXPERIMENT FILE (TOML)
   name = \"quickstart\"          run name; output goes to results/<name>/
   description = \"...\"          optional text for report.md
@@ -32,81 +39,12 @@ EXPERIMENT FILE (TOML)
                                iterations, guided sampling, 200 matches
                                clustered; large: localized sampling, clusters
                                under 2 % of N dropped). Not a [sweep] key
-  method = \"baseline\"          baseline (no focal filter) | semical (Algorithm 1)
-  num_samples = 3000           M, minimal samples per scene (at most, adaptive)
-  adaptive_batch = 0           > 0: draw M in batches of this many until a batch
-                               gives fewer than adaptive_tolerance N points a
-                               better-supported hypothesis (0: fixed M)
-  adaptive_tolerance = 0.01    the adaptive stop rule's fraction of the points
-  mss_size = 8                 points per minimal sample
-  thr_px = 2.5                 inlier threshold (px); tau = thr_px^2 (Eq. 38)
-  tau_diff = 0.05              local test |f1-f2|/f_avg < tau_diff (Eq. 36)
-  tau_range = 0.2              band |f_avg-f_peak|/f_peak <= tau_range (Eq. 37)
-  irls_iters = 5               IRLS-Tukey outer iterations
-  irls_fit = \"normalized\"      IRLS refit: normalized | plain (reference code)
-  irls_unit_weight_fallback = true   false: < 8 positive weights drop the hypothesis
-  irls_sigma_offset_px = 0.0   sigma = 1.4826 MAD + offset (reference code: 1e-12)
-  irls_polish = false          LM polish of each sample's F first (reference code)
-  refine = true                false: raw minimal-sample F (ablation)
-  eight_point = \"normalized\"   normalized | plain
-  minimal_solver = \"five-point\"   five-point (E at the focal prior) | eight-point
-                               | seven-point | six-point-focal (shared unknown f)
-  minimal_solutions = \"best\"   best (most matches within thr_px) | all
-                               | best-then-polish (best, five-point roots
-                               scored before their polish: faster)
-                               | best-unpolished (as best-then-polish,
-                               the winner left unpolished)
-  min_consensus = 0            solutions with fewer matches within thr_px are
-                               dropped before refinement (not eight-point)
-  preselect_matches = 0        K > 0: a sample's solutions scored on K random
-                               matches first, the top ones on all (best*)
-  sampling = \"uniform\"        uniform | localized (the others among the first
-                               match's nearest in image 1: NAPSAC) | mixed
-                               (the two in turn) | guided (mixed, then the
-                               uniform turns drawn by the co-inlier counts
-                               of the hypotheses so far: Multi-GS)
-  guided_batch = 100           samples per batch of guided (the first: mixed)
-  focal_solver = \"kocur\"       kocur | bougnoux | external (read from focal_file)
-  focal_file = \"f{seed}.csv\"   focal_solver = \"external\": CSV of scene,hypothesis,f1,f2
-  weight_sets = \"adelaidermf\"  adelaidermf | hopef | [[w_f1, w_pp1, w_f2, w_pp2], ...]
-  max_iters = 100              robust focal solver iterations
-  focal_failure = \"report\"     report | prior (reference code)
-  truncate_focals = false      truncate f1, f2 to integers (reference code)
-  local_test = \"algorithm1\"    algorithm1 | reference-code
-  implausible_focal = \"filter\"   f_peak outside 0.3-3 x prior: filter | abstain
-                               (keep every hypothesis: the baseline's labels)
-  linkage = \"t-linkage\"        t-linkage | j-linkage
-  min_cluster_size = 8         smaller clusters become outliers
-  size_rule = \"min-size\"       min-size | largest-gap (cut the sorted sizes at the
-                               largest ratio) | { relative-min = 0.01 } (>= f N points)
-  final_assignment = \"merge\"  none (the thesis) | refit (IRLS refit of each cluster, then
-                               each match to its nearest model within thr_px)
-                               | merge (a cluster joins a larger one whose best
-                               hypothesis explains 80 % of its matches)
-                               | merge-refit (merge, then a cluster joins a larger
-                               one when the F refitted on both explains 80 % of each)
-                               | merge-anchored (the same, the refit started from the
-                               larger cluster's model)
-  duplicate_filter = \"none\"   none | same-inliers (one hypothesis per distinct
-                               inlier set enters the preferences)
-  cluster_subset = 0           > 0: steps 1-9 on this many random matches, the others
-                               then join the nearest cluster
-  subset_extension = \"preference-explained\"   how: preference-explained (nearest mean
-                               preference vector, within thr_px of its cluster's model)
-                               | preference | model (nearest cluster model)
-                               | preference-refit | model-refit (the cluster models
-                               refitted by IRLS on the clustered matches)
-                               | neighbours (the label of most of its 5 nearest
-                               clustered matches, within thr_px of its model)
-  recover_outliers = \"none\"   none | refit (each cluster's F refitted by IRLS; an
-                               outlier joins the cluster that explains it best)
-  max_memory_mb = 0            > 0: refuse (at once) a scene whose clustering
-                               would need more memory (MB); 0: refuse a
-                               run needing more than the available memory
-  seed = 12345                 sampling seed
+";
 
+/// The help after the `[pipeline]` keys.
+const TAIL: &str = "
   [sweep]                      any [pipeline] key as a list; the run is the
-  method = [\"baseline\", \"semical\"]   cartesian product, in the order above
+  method = [\"baseline\", \"semical\"]   cartesian product, in the key table's order
 
   [compare]
   against = { method = \"baseline\" }   reference of each Wilcoxon test
@@ -133,6 +71,9 @@ mod tests {
         let mut keys: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
         let mut section = String::new();
         for line in CONFIG_KEYS_HELP.lines() {
+            if line.starts_with("   ") && !line.starts_with("    ") {
+                continue; // the reference-code line's continuation
+            }
             let Some(rest) = line.strip_prefix("  ") else {
                 continue;
             };
@@ -197,6 +138,17 @@ mod tests {
     fn help_documents_exactly_the_keys_serde_reads() {
         let mut documented = documented_keys();
         let mut read = serde_keys();
+        // The reference code's variants are named on one line.
+        let reference = segmentation::KEYS
+            .iter()
+            .filter(|k| k.stage == segmentation::Stage::ReferenceCode);
+        for key in reference {
+            assert!(CONFIG_KEYS_HELP.contains(key.name), "{}", key.name);
+            documented
+                .get_mut("pipeline")
+                .unwrap()
+                .insert(key.name.to_string());
+        }
         // `[sweep]` takes any [pipeline] key: the help shows one example.
         let sweep = documented.remove("sweep").expect("a [sweep] section");
         assert!(!sweep.is_empty(), "no [sweep] example");

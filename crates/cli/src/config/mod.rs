@@ -9,10 +9,12 @@
 //!
 //! One file per job: [`pipeline`] (`[pipeline]`), [`dataset`] (`[dataset]`),
 //! [`tables`] (`[compare]`, `[plots]`), [`toml_error`] (errors with file,
-//! key and line), [`help`] (the `--help` text, tested against the keys).
+//! key and line), [`help`] (the `--help` text, tested against the keys),
+//! [`keys`] (the texts made from the key table: help, README, Python stub).
 
 mod dataset;
 mod help;
+pub mod keys;
 mod pipeline;
 mod tables;
 #[cfg(test)]
