@@ -55,6 +55,7 @@ mod profile;
 mod result;
 mod sampling;
 mod segment;
+pub mod selection;
 mod subset;
 mod variants;
 mod weight_sets;
@@ -88,4 +89,5 @@ pub use sampling::{
     hypothesis_rng, minimal_sample, neighbourhood_size, splitmix64, MinimalSampler,
 };
 pub use segment::{fit_cluster, segment, segment_with};
+pub use selection::{select, Selection, SelectionError, Strategy};
 pub use subset::{extend_labels, refitted_cluster_models, subset_indices, ClusteredSubset};
