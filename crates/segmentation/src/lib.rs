@@ -50,6 +50,7 @@ mod profile;
 mod result;
 mod sampling;
 mod segment;
+pub mod selection;
 mod subset;
 mod variants;
 mod weight_sets;
@@ -89,4 +90,5 @@ pub use sampling::{
 pub use segment::{
     check_memory, fit_cluster, segment, segment_cancellable, segment_with, segment_with_cancellable,
 };
+pub use selection::{select, Selection, SelectionError, Strategy};
 pub use subset::{extend_labels, subset_indices, ClusteredSubset};

@@ -1,0 +1,275 @@
+//! Model selection after the clustering: which of T-Linkage's clusters are
+//! motions, by a principle instead of size rules (`min_cluster_size`, a
+//! share of N, the merge's share of a cluster explained):
+//!
+//! * [`Strategy::Nfa`]: a cluster is a motion when the number of false
+//!   alarms of its F is below 1, given the motions detected before it
+//!   ([`nfa::detect`]: Moisan & Stival 2004, AC-RANSAC 2012, MAC-RANSAC
+//!   2010);
+//! * [`Strategy::Gric`]: two clusters are one motion when one F for both
+//!   has the smaller GRIC (Torr 1998, [`gric::merge_by_gric`]);
+//! * [`Strategy::GricNfa`] and [`Strategy::NfaGric`]: one after the other.
+//!
+//! Matches of no motion are outliers. Pure functions of the matches
+//! (principal-point-centred, as [`crate::segment`] uses them), the
+//! clustering's labels, the image size and `thr_px`; every cluster's F is
+//! refitted here by IRLS-Tukey (docs/method.md, Algorithm 1 step 3;
+//! [`CLUSTER_REFIT_ITERS`] iterations) on its matches alone.
+
+mod binomial;
+pub mod gric;
+pub mod nfa;
+#[cfg(test)]
+mod tests;
+
+pub use binomial::ln_binomial_tail;
+
+use geometry::{sampson_distances_squared, Correspondences, IrlsParams, IrlsWorkspace};
+use nalgebra::Matrix3;
+use thiserror::Error;
+
+/// IRLS-Tukey iterations of each cluster's refit: the thesis's
+/// `irls_iters` (Table 1), whatever the profile's.
+pub const CLUSTER_REFIT_ITERS: usize = 5;
+
+/// How clusters become motions.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Strategy {
+    /// A-contrario detection ([`nfa::detect`]); a cluster not detected
+    /// joins the detected F that explains most of its matches within
+    /// `thr_px`; matches no detected F explains are outliers.
+    Nfa,
+    /// GRIC merges ([`gric::merge_by_gric`]) of the clusters of at least 8
+    /// matches; smaller clusters are outliers.
+    Gric,
+    /// GRIC merges, then a-contrario detection of the merged clusters.
+    GricNfa,
+    /// A-contrario detection, then GRIC merges of the motions.
+    NfaGric,
+}
+
+impl Strategy {
+    /// Every strategy.
+    pub const ALL: [Strategy; 4] = [Self::Nfa, Self::Gric, Self::GricNfa, Self::NfaGric];
+
+    /// `nfa`, `gric`, `gric+nfa`, `nfa+gric`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Nfa => "nfa",
+            Self::Gric => "gric",
+            Self::GricNfa => "gric+nfa",
+            Self::NfaGric => "nfa+gric",
+        }
+    }
+}
+
+/// Input that cannot be selected from.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum SelectionError {
+    /// Labels and matches differ in number.
+    #[error("selection: {labels} labels for {points} matches")]
+    LengthMismatch {
+        /// Number of labels.
+        labels: usize,
+        /// Number of matches.
+        points: usize,
+    },
+    /// A label below −1.
+    #[error("selection: label {label} of match {index} is below -1 (the outlier label)")]
+    BadLabel {
+        /// The match.
+        index: usize,
+        /// Its label.
+        label: i32,
+    },
+    /// `thr_px` not finite and positive.
+    #[error("selection: thr_px must be a finite number > 0, got {0}")]
+    BadThreshold(f64),
+    /// An image side of zero pixels.
+    #[error("selection: image size {0} x {1} has a zero side")]
+    BadImageSize(u32, u32),
+}
+
+/// The clusters that are motions.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Selection {
+    /// Per match: its motion 0, 1, … (numbered by first appearance) or −1.
+    pub labels: Vec<i32>,
+    /// Number of motions.
+    pub motions: usize,
+}
+
+/// Motions and outliers from the clustering's `labels` (−1 outliers) of
+/// the principal-point-centred `points` by `strategy`; `image_size` is
+/// (W, H) in px and `thr_px` the inlier threshold (the NFA's largest
+/// threshold and the refits' inlier bound).
+pub fn select(
+    points: &Correspondences,
+    labels: &[i32],
+    image_size: (u32, u32),
+    thr_px: f64,
+    strategy: Strategy,
+) -> Result<Selection, SelectionError> {
+    check(points, labels, image_size, thr_px)?;
+    let irls = IrlsParams {
+        thr_px,
+        max_iters: CLUSTER_REFIT_ITERS,
+        ..IrlsParams::default()
+    };
+    let labels = match strategy {
+        Strategy::Nfa => by_nfa(points, &groups_of(labels), image_size, thr_px, &irls),
+        Strategy::Gric => labels_of(
+            &gric::merge_by_gric(points, &groups_of(labels), &irls),
+            points.len(),
+        ),
+        Strategy::GricNfa => {
+            let merged = gric::merge_by_gric(points, &groups_of(labels), &irls);
+            by_nfa(points, &merged, image_size, thr_px, &irls)
+        }
+        Strategy::NfaGric => {
+            let detected = by_nfa(points, &groups_of(labels), image_size, thr_px, &irls);
+            labels_of(
+                &gric::merge_by_gric(points, &groups_of(&detected), &irls),
+                points.len(),
+            )
+        }
+    };
+    let motions = labels.iter().map(|&l| l + 1).max().unwrap_or(0) as usize;
+    Ok(Selection { labels, motions })
+}
+
+fn check(
+    points: &Correspondences,
+    labels: &[i32],
+    image_size: (u32, u32),
+    thr_px: f64,
+) -> Result<(), SelectionError> {
+    if labels.len() != points.len() {
+        return Err(SelectionError::LengthMismatch {
+            labels: labels.len(),
+            points: points.len(),
+        });
+    }
+    if let Some((index, &label)) = labels.iter().enumerate().find(|(_, &l)| l < -1) {
+        return Err(SelectionError::BadLabel { index, label });
+    }
+    if !(thr_px.is_finite() && thr_px > 0.0) {
+        return Err(SelectionError::BadThreshold(thr_px));
+    }
+    if image_size.0 == 0 || image_size.1 == 0 {
+        return Err(SelectionError::BadImageSize(image_size.0, image_size.1));
+    }
+    Ok(())
+}
+
+/// Labels after [`nfa::detect`]: the detected groups' matches keep their
+/// group; another group joins, as a whole, the detected F that explains
+/// (within `thr_px`, the band that explains a match in the detection) the
+/// most of its matches: those it explains take its label, the others the
+/// detected F nearest to them within `thr_px`, or are outliers.
+fn by_nfa(
+    points: &Correspondences,
+    groups: &[Vec<usize>],
+    image_size: (u32, u32),
+    thr_px: f64,
+    irls: &IrlsParams,
+) -> Vec<i32> {
+    let detections = nfa::detect(points, groups, image_size, thr_px, irls);
+    let n = points.len();
+    let residuals: Vec<Vec<f64>> = detections
+        .iter()
+        .map(|d| sampson_residuals(points, &d.f))
+        .collect();
+    let nearest = |m: usize| {
+        residuals
+            .iter()
+            .enumerate()
+            .filter(|(_, r)| r[m] <= thr_px)
+            .min_by(|a, b| a.1[m].total_cmp(&b.1[m]))
+            .map_or(-1, |(d, _)| d as i32)
+    };
+    let mut assigned = vec![-1_i32; n];
+    for g in groups {
+        let explained = |r: &Vec<f64>| g.iter().filter(|&&m| r[m] <= thr_px).count();
+        let joined =
+            (0..residuals.len()).max_by_key(|&d| (explained(&residuals[d]), std::cmp::Reverse(d)));
+        for &m in g {
+            assigned[m] = match joined {
+                Some(d) if residuals[d][m] <= thr_px => d as i32,
+                _ => nearest(m),
+            };
+        }
+    }
+    for (d, det) in detections.iter().enumerate() {
+        groups[det.group]
+            .iter()
+            .for_each(|&m| assigned[m] = d as i32);
+    }
+    renumber(&assigned)
+}
+
+/// The matches of each label ≥ 0, in label order, increasing.
+fn groups_of(labels: &[i32]) -> Vec<Vec<usize>> {
+    let count = labels.iter().map(|&l| l + 1).max().unwrap_or(0) as usize;
+    let mut groups = vec![Vec::new(); count];
+    for (i, &l) in labels.iter().enumerate() {
+        if l >= 0 {
+            groups[l as usize].push(i);
+        }
+    }
+    groups.retain(|g| !g.is_empty());
+    groups
+}
+
+/// Labels of `n` matches from groups (the rest −1), renumbered.
+fn labels_of(groups: &[Vec<usize>], n: usize) -> Vec<i32> {
+    let mut labels = vec![-1; n];
+    for (l, g) in groups.iter().enumerate() {
+        g.iter().for_each(|&m| labels[m] = l as i32);
+    }
+    renumber(&labels)
+}
+
+/// Labels ≥ 0 renumbered 0, 1, … by first appearance.
+fn renumber(labels: &[i32]) -> Vec<i32> {
+    let mut map = std::collections::HashMap::new();
+    labels
+        .iter()
+        .map(|&l| {
+            if l < 0 {
+                return -1;
+            }
+            let next = map.len() as i32;
+            *map.entry(l).or_insert(next)
+        })
+        .collect()
+}
+
+/// The F of `members` (at least 8) refitted by IRLS-Tukey on those matches
+/// alone, started from their 8-point; their Hartley-normalised 8-point
+/// when the refit fails (it drops below 8 inliers on a small cluster);
+/// None when that fails too.
+pub(crate) fn refit(
+    points: &Correspondences,
+    members: &[usize],
+    irls: &IrlsParams,
+) -> Option<Matrix3<f64>> {
+    if members.len() < geometry::MIN_POINTS {
+        return None;
+    }
+    let subset = points.subset(members).ok()?;
+    let sample: Vec<usize> = (0..subset.len()).collect();
+    IrlsWorkspace::new()
+        .run(&subset, &sample, None, irls)
+        .map(|s| s.f)
+        .or_else(|_| geometry::eight_point_normalized(&subset))
+        .ok()
+}
+
+/// Sampson distances (px) of every match to `f`.
+pub(crate) fn sampson_residuals(points: &Correspondences, f: &Matrix3<f64>) -> Vec<f64> {
+    let mut r = vec![0.0; points.len()];
+    sampson_distances_squared(f, points, &mut r);
+    r.iter_mut().for_each(|v| *v = v.sqrt());
+    r
+}

@@ -1,0 +1,300 @@
+//! A-contrario significance of a cluster's fundamental matrix: its number of
+//! false alarms (NFA) against a background of matches that fall anywhere in
+//! the images (Moisan & Stival, "A probabilistic criterion to detect rigid
+//! point matches between two images and estimate the fundamental matrix",
+//! IJCV 2004; Moisan, Moulon & Monasse, "Automatic homographic registration
+//! of a pair of images, with a contrario elimination of outliers", IPOL 2012:
+//! AC-RANSAC's threshold chosen per model), and the greedy detection of
+//! several models that removes what each detected model explains before
+//! testing the next (Rabin, Delon, Gousseau & Moisan, "MAC-RANSAC: a robust
+//! algorithm for the recognition of multiple objects", 3DPVT 2010).
+
+use super::binomial::ln_binomial_tail;
+use super::{refit, sampson_residuals};
+use geometry::{Correspondences, IrlsParams};
+use nalgebra::Matrix3;
+
+/// The degrees of freedom of a fundamental matrix: a fit on k matches can
+/// bring 7 of them onto its epipolar lines whatever they are (the 7-point
+/// solver), so the NFA's binomial counts the other `k − 7` among the other
+/// `n − 7` (AC-RANSAC's `k − s` exponent, Moisan & Stival 2004).
+pub const FITTED_MATCHES: usize = 7;
+
+/// Thresholds are tried at every support k up to this, then on a geometric
+/// grid (ratio [`K_GRID_RATIO`]) and at the largest support.
+const K_DENSE: usize = 64;
+/// Ratio of consecutive supports tried above [`K_DENSE`].
+const K_GRID_RATIO: f64 = 1.02;
+
+/// The probability that a background match lies within `eps_px` of an
+/// epipolar line in image 2: the area of a band of width `2 eps` along a
+/// line no longer than the image diagonal `L`, over the image area `A`,
+/// `p = min(1, 2 eps L / A)` (Moisan & Stival 2004, Section 3.2).
+pub fn band_probability(eps_px: f64, image_size: (u32, u32)) -> f64 {
+    let (w, h) = (f64::from(image_size.0), f64::from(image_size.1));
+    (2.0 * eps_px * w.hypot(h) / (w * h)).min(1.0)
+}
+
+/// Background pairs per F for [`Background::probability`].
+pub const BACKGROUND_PAIRS: usize = 4096;
+
+/// The background model of one F: matches `(x₁, x₂)` independent and
+/// uniform over the two images (taken centred on the principal point).
+/// `p(eps)`, the probability that such a match lies within Sampson distance
+/// `eps` of F, is the larger of the band of [`band_probability`] and the
+/// share of [`BACKGROUND_PAIRS`] fixed quasi-random pairs (the additive
+/// recurrence of the generalised golden ratio in four dimensions, Roberts
+/// 2018) within `eps`: the band alone underestimates p for an F whose
+/// epipoles lie inside the images, where many random matches fall near
+/// their epipolar lines.
+pub struct Background {
+    sorted: Vec<f64>,
+    image_size: (u32, u32),
+}
+
+impl Background {
+    /// The background of `f` in an image of `image_size` (W, H).
+    pub fn new(f: &Matrix3<f64>, image_size: (u32, u32)) -> Self {
+        // φ₄: the positive root of x⁵ = x + 1.
+        let phi: f64 = 1.167_303_978_261_418_8;
+        let alpha = [
+            1.0 / phi,
+            1.0 / phi.powi(2),
+            1.0 / phi.powi(3),
+            1.0 / phi.powi(4),
+        ];
+        let (w, h) = (f64::from(image_size.0), f64::from(image_size.1));
+        let mut sorted: Vec<f64> = (1..=BACKGROUND_PAIRS)
+            .map(|i| {
+                let u = alpha.map(|a| (0.5 + a * i as f64).fract());
+                let p1 = [(u[0] - 0.5) * w, (u[1] - 0.5) * h];
+                let p2 = [(u[2] - 0.5) * w, (u[3] - 0.5) * h];
+                geometry::sampson_distance(f, p1, p2)
+            })
+            .collect();
+        sorted.sort_by(f64::total_cmp);
+        Self { sorted, image_size }
+    }
+
+    /// `p(eps)`.
+    pub fn probability(&self, eps_px: f64) -> f64 {
+        let share = self.sorted.partition_point(|&d| d <= eps_px) as f64 / self.sorted.len() as f64;
+        band_probability(eps_px, self.image_size).max(share)
+    }
+}
+
+/// A model's a-contrario score.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Significance {
+    /// `ln NFA` at the best threshold (−∞ for an exact fit of many matches;
+    /// +∞ with fewer than [`FITTED_MATCHES`] + 1 matches within `thr_px`).
+    pub ln_nfa: f64,
+    /// The threshold of the smallest NFA, px (the k-th smallest residual).
+    pub threshold_px: f64,
+    /// The number of matches within it.
+    pub support: usize,
+}
+
+impl Significance {
+    /// No support: never significant.
+    const NONE: Self = Self {
+        ln_nfa: f64::INFINITY,
+        threshold_px: 0.0,
+        support: 0,
+    };
+
+    /// `NFA < 1`: the model is meaningful.
+    pub fn is_significant(&self) -> bool {
+        self.ln_nfa < 0.0
+    }
+}
+
+/// The smallest `ln NFA` of a model over its thresholds (AC-RANSAC):
+/// `sorted` holds the Sampson distances (px) of the `n = sorted.len()`
+/// matches tested, increasing; for a support k the threshold is the k-th
+/// smallest distance `eps_k ≤ max_threshold_px` and
+/// `NFA(k) = tests · P(Bin(n − 7, p(eps_k)) ≥ k − 7)` with `p` the
+/// [`Background`]'s and `ln_tests = ln(number of tests)`.
+pub fn significance(
+    sorted: &[f64],
+    ln_tests: f64,
+    background: &Background,
+    max_threshold_px: f64,
+) -> Significance {
+    let n = sorted.len();
+    let within = sorted.partition_point(|&r| r <= max_threshold_px);
+    if within <= FITTED_MATCHES {
+        return Significance::NONE;
+    }
+    let s = FITTED_MATCHES as u64;
+    let mut best = Significance::NONE;
+    let mut k = FITTED_MATCHES + 1;
+    loop {
+        let eps = sorted[k - 1];
+        let p = background.probability(eps);
+        let ln_nfa = ln_tests + ln_binomial_tail(n as u64 - s, k as u64 - s, p);
+        if ln_nfa < best.ln_nfa {
+            best = Significance {
+                ln_nfa,
+                threshold_px: eps,
+                support: k,
+            };
+        }
+        if k == within {
+            return best;
+        }
+        k = if k < K_DENSE {
+            k + 1
+        } else {
+            ((k as f64 * K_GRID_RATIO).ceil() as usize).min(within)
+        };
+    }
+}
+
+/// A group of matches detected as a motion.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Detection {
+    /// Index of the group in the input.
+    pub group: usize,
+    /// Its F, refitted by IRLS-Tukey on its matches not explained by the
+    /// detections before it.
+    pub f: Matrix3<f64>,
+    /// Its score given the detections before it.
+    pub significance: Significance,
+}
+
+/// The groups (lists of match indices) that are motions, greedily, the
+/// most meaningful first (MAC-RANSAC's order): in each round every group
+/// not yet detected is scored given the detections so far, and the one of
+/// smallest NFA is detected when that NFA is below 1; otherwise the
+/// detection ends.
+///
+/// Given the detections, a match does not count (neither in n nor in k)
+/// when a detected F explains it: when it lies within `thr_px` of it (the
+/// inlier threshold of the preferences, Eq. 38; AC-RANSAC's own threshold
+/// of the detected F, smaller, would leave its noise tail to support a
+/// copy of it). The group's F is refitted by IRLS-Tukey on its matches
+/// that count ([`score_given`]). So a fragment of a detected motion keeps
+/// no more than the few matches of its noise tail, and a mover beyond
+/// `thr_px` of the background's F keeps the matches there.
+///
+/// The number of tests is `G · (N − 7)`: G groups of at least 8 matches,
+/// N − 7 thresholds each.
+pub fn detect(
+    points: &Correspondences,
+    groups: &[Vec<usize>],
+    image_size: (u32, u32),
+    thr_px: f64,
+    irls: &IrlsParams,
+) -> Vec<Detection> {
+    let n = points.len();
+    let mut remaining: Vec<usize> = (0..groups.len())
+        .filter(|&i| groups[i].len() > FITTED_MATCHES)
+        .collect();
+    if remaining.is_empty() || n <= FITTED_MATCHES {
+        return Vec::new();
+    }
+    let ln_tests = (remaining.len() as f64).ln() + ((n - FITTED_MATCHES) as f64).ln();
+    let mut explained = Explained(vec![false; n]);
+    let mut detections = Vec::new();
+    loop {
+        let best = remaining
+            .iter()
+            .enumerate()
+            .filter_map(|(pos, &i)| {
+                let scored = score_given(
+                    points, &groups[i], &explained, ln_tests, image_size, thr_px, irls,
+                )?;
+                Some((pos, i, scored))
+            })
+            .min_by(|a, b| a.2 .1.ln_nfa.total_cmp(&b.2 .1.ln_nfa).then(a.1.cmp(&b.1)));
+        let Some((pos, group, (f, significance))) = best else {
+            break;
+        };
+        if !significance.is_significant() {
+            break;
+        }
+        remaining.swap_remove(pos);
+        explained.add(&sampson_residuals(points, &f), thr_px);
+        detections.push(Detection {
+            group,
+            f,
+            significance,
+        });
+    }
+    detections
+}
+
+/// The matches the detections so far explain: within `thr_px` of a
+/// detected F.
+pub struct Explained(Vec<bool>);
+
+impl Explained {
+    fn add(&mut self, residuals: &[f64], thr_px: f64) {
+        for (e, &r) in self.0.iter_mut().zip(residuals) {
+            *e |= r <= thr_px;
+        }
+    }
+}
+
+/// A group's F (refitted on its matches that count) and its significance
+/// given `explained`; None when fewer than 8 of its matches count or the
+/// fit fails.
+fn score_given(
+    points: &Correspondences,
+    group: &[usize],
+    explained: &Explained,
+    ln_tests: f64,
+    image_size: (u32, u32),
+    thr_px: f64,
+    irls: &IrlsParams,
+) -> Option<(Matrix3<f64>, Significance)> {
+    let own: Vec<usize> = group.iter().copied().filter(|&m| !explained.0[m]).collect();
+    if own.len() <= FITTED_MATCHES {
+        return None;
+    }
+    let f = refit(points, &own, irls)?;
+    let mut r: Vec<f64> = sampson_residuals(points, &f)
+        .into_iter()
+        .zip(&explained.0)
+        .filter(|(_, &e)| !e)
+        .map(|(r, _)| r)
+        .collect();
+    r.sort_by(f64::total_cmp);
+    let significance = significance(&r, ln_tests, &Background::new(&f, image_size), thr_px);
+    Some((f, significance))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn band_probability_is_the_band_over_the_area() {
+        // 2 · 1 px · 500 px / (400 · 300 px²).
+        assert!((band_probability(1.0, (400, 300)) - 1000.0 / 120_000.0).abs() < 1e-15);
+        assert_eq!(band_probability(1e6, (400, 300)), 1.0);
+    }
+
+    #[test]
+    fn exact_support_is_meaningful_and_chance_support_is_not() {
+        let size = (640, 480);
+        // 100 matches at 0.1 px among 1000 spread up to 100 px: meaningful.
+        let mut r: Vec<f64> = (0..1000).map(|i| 0.1 * i as f64).collect();
+        r[..100].iter_mut().for_each(|v| *v = 0.1);
+        r.sort_by(f64::total_cmp);
+        let bg = Background::new(
+            &Matrix3::new(0.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0),
+            size,
+        );
+        let s = significance(&r, (1000f64).ln(), &bg, 2.5);
+        assert!(s.is_significant() && s.support >= 100, "{s:?}");
+        // Distances uniform in [0, 320] px: the fraction within eps is about
+        // what the band predicts, never meaningful.
+        let r: Vec<f64> = (0..1000).map(|i| 0.32 * i as f64).collect();
+        let s = significance(&r, (1000f64).ln(), &bg, 2.5);
+        assert!(!s.is_significant(), "{s:?}");
+        // Seven matches within thr_px are what any F fits: no test.
+        assert_eq!(significance(&r[..7], 0.0, &bg, 2.5), Significance::NONE);
+    }
+}
