@@ -204,7 +204,10 @@ type ReadmeRow = (String, usize, usize, usize, Vec<(i32, usize)>);
 
 fn real_sift_readme(dir: &Path) -> Vec<ReadmeRow> {
     let text = std::fs::read_to_string(dir.join("README.md")).unwrap();
+    // The first table: from its `| scene |` header to the first blank line.
     text.lines()
+        .skip_while(|l| !l.starts_with("| scene |"))
+        .take_while(|l| !l.is_empty())
         .filter(|l| l.starts_with("| ") && !l.starts_with("| scene") && !l.starts_with("| total"))
         .map(|l| {
             let cells: Vec<&str> = l.trim_matches('|').split('|').map(str::trim).collect();
