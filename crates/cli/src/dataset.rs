@@ -117,19 +117,6 @@ fn check_adelaidermf_range(range: Option<[u32; 2]>, count: usize) -> Result<()> 
     }
 }
 
-#[cfg(test)]
-mod range_tests {
-    #[test]
-    fn adelaidermf_ranges_past_the_scenes_are_refused() {
-        assert!(super::check_adelaidermf_range(Some([0, 18]), 19).is_ok());
-        assert!(super::check_adelaidermf_range(None, 19).is_ok());
-        let err = super::check_adelaidermf_range(Some([17, 50]), 19).unwrap_err();
-        assert_eq!(
-            err.to_string(),
-            "dataset.index_range = [17, 50]: AdelaideRMF has 19 scenes, indices 0 to 18"
-        );
-    }
-}
 
 /// The selected AdelaideRMF sequences.
 fn adelaidermf_scenes(dataset: &DatasetConfig, root: &Path, images: bool) -> Result<Vec<Scene>> {
@@ -244,4 +231,18 @@ pub fn load_match_file(path: &Path, image_size: Option<(u32, u32)>) -> Result<Sc
     } else {
         datasets::user::load_csv(path, image_size)?
     })
+}
+
+#[cfg(test)]
+mod range_tests {
+    #[test]
+    fn adelaidermf_ranges_past_the_scenes_are_refused() {
+        assert!(super::check_adelaidermf_range(Some([0, 18]), 19).is_ok());
+        assert!(super::check_adelaidermf_range(None, 19).is_ok());
+        let err = super::check_adelaidermf_range(Some([17, 50]), 19).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "dataset.index_range = [17, 50]: AdelaideRMF has 19 scenes, indices 0 to 18"
+        );
+    }
 }
