@@ -117,7 +117,6 @@ fn check_adelaidermf_range(range: Option<[u32; 2]>, count: usize) -> Result<()> 
     }
 }
 
-
 /// The selected AdelaideRMF sequences.
 fn adelaidermf_scenes(dataset: &DatasetConfig, root: &Path, images: bool) -> Result<Vec<Scene>> {
     let wanted = dataset.scenes.as_deref();
