@@ -200,7 +200,7 @@ mod tests {
         let mut recount = Vec::new();
         geometry::sampson_consensus(&truth, &points, 4.0, 0, &mut recount);
         assert_eq!(chosen.consensus, recount);
-        assert!(recount.len() > 0);
+        assert!(!recount.is_empty());
     }
 
     /// Scoring the unpolished roots picks the root `best` picks, within
