@@ -116,7 +116,7 @@ pub fn check_matches(matches: &Matches) -> Result<Vec<InputWarning>, Segmentatio
         let inside = |x: f64, y: f64| (-1.0..=w).contains(&x) && (-1.0..=h).contains(&y);
         rows().all(|(_, v)| inside(v[0], v[1]) && inside(v[2], v[3]))
     };
-    if matches.len() > 0 && w != h && !fits(w, h) && fits(h, w) {
+    if !matches.is_empty() && w != h && !fits(w, h) && fits(h, w) {
         warnings.push(InputWarning::TransposedImageSize {
             width: matches.image_size.0,
             height: matches.image_size.1,
