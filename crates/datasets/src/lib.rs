@@ -30,6 +30,7 @@
 
 pub mod adelaidermf;
 pub mod data_root;
+mod echo;
 pub mod error;
 pub mod hopef;
 pub mod hopef_synth;
@@ -37,6 +38,7 @@ pub mod mat;
 pub mod npz;
 pub mod scene;
 pub mod synthetic;
+pub use echo::{echo, ECHO_MAX_CHARS};
 pub mod user;
 
 pub use data_root::{

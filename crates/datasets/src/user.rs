@@ -29,6 +29,7 @@ use std::path::{Path, PathBuf};
 /// height = 480           # pixels, required
 /// name = "desk"          # default: the data file's stem
 /// focal = 700.0          # ground-truth focal in pixels, if known
+/// focal_prior = 720.0    # the focal prior (e.g. from EXIF), default max(W, H)
 /// principal_point = [320.0, 240.0]   # default: ((W-1)/2, (H-1)/2)
 /// ```
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -47,6 +48,12 @@ pub struct Sidecar {
     /// Principal point in pixels.
     #[serde(default)]
     pub principal_point: Option<[f64; 2]>,
+    /// The focal prior in pixels, e.g. from the camera's EXIF data: the
+    /// focal the five-point default solves its essential matrices at
+    /// (docs/method.md, "The default"); `sctl segment --focal` overrides
+    /// it. Default: max(W, H).
+    #[serde(default)]
+    pub focal_prior: Option<f64>,
 }
 
 /// The sidecar path of a data file: the same path with extension `.toml`.
@@ -62,11 +69,18 @@ pub fn sidecar_path(data_path: &Path) -> PathBuf {
 /// Reads a sidecar TOML file.
 pub fn read_sidecar(path: &Path) -> Result<Sidecar, DatasetError> {
     let text = std::fs::read_to_string(path).map_err(|e| DatasetError::io(path, e))?;
-    toml::from_str(&text).map_err(|e| DatasetError::Parse {
+    let parse_err = |problem: String| DatasetError::Parse {
         path: path.to_path_buf(),
         line: None,
-        problem: e.to_string(),
-    })
+        problem,
+    };
+    let sidecar: Sidecar = toml::from_str(&text).map_err(|e| parse_err(e.to_string()))?;
+    match sidecar.focal_prior {
+        Some(f) if !(f.is_finite() && f > 0.0) => Err(parse_err(format!(
+            "focal_prior must be a finite number of pixels > 0, got {f}"
+        ))),
+        _ => Ok(sidecar),
+    }
 }
 
 /// Loads a CSV match file. `image_size` (W, H) overrides the sidecar's; one
@@ -128,7 +142,10 @@ pub fn load_csv(
             *value = parse_coordinate(field(col)).ok_or_else(|| {
                 parse_err(
                     line,
-                    format!("column `{name}`: {:?} is not a number", field(col)),
+                    format!(
+                        "column `{name}`: {:?} is not a number",
+                        crate::echo(field(col))
+                    ),
                 )
             })?;
         }
@@ -183,7 +200,11 @@ pub fn load_matches_txt(
         let mut xy = [0.0; 4];
         for (k, value) in xy.iter_mut().enumerate() {
             *value = parse_coordinate(fields[k]).ok_or_else(|| {
-                parse_err(format!("column {}: {:?} is not a number", k + 1, fields[k]))
+                parse_err(format!(
+                    "column {}: {:?} is not a number",
+                    k + 1,
+                    crate::echo(fields[k])
+                ))
             })?;
         }
         let label = match fields.get(4) {
@@ -235,7 +256,10 @@ pub fn parse_label(s: &str) -> Result<i32, String> {
     match s.parse::<i32>() {
         Ok(label) if label >= 0 => Ok(label),
         Ok(label) => Err(format!("{label} is negative: {allowed}")),
-        Err(_) => Err(format!("{s:?} is not an integer label: {allowed}")),
+        Err(_) => Err(format!(
+            "{:?} is not an integer label: {allowed}",
+            crate::echo(s)
+        )),
     }
 }
 

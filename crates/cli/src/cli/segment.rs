@@ -35,9 +35,9 @@ pub struct Args {
     /// else max(W, H)]. The five-point default solves the essential matrices
     /// at this focal; semical uses it as the prior of the focal-length KDE
     /// (its plausibility band and the fallback of failed solves). A prior
-    /// within 0.5-4 x the true focal costs little: ME 14.5-11.6 % on
-    /// HOPE-F-like scenes for priors 0.25-4 x; on AdelaideRMF only 0.25 x
-    /// hurts (6.4 % against 3.5 %).
+    /// within 0.5-4 x the true focal costs at most 1.2 points of ME
+    /// (HOPE-F-faithful validation scenes 11.2-12.4 %, AdelaideRMF
+    /// 3.7-4.3 %), 0.25 x about 1.5 points (results/focal_prior/).
     #[arg(long, value_name = "PX", allow_hyphen_values = true, value_parser = parse_focal)]
     pub focal: Option<f64>,
     /// Parameters: a TOML file with a `[pipeline]` table (an experiment file
@@ -166,7 +166,10 @@ pub fn run(args: Args) -> Result<()> {
         PlotFormat::from_path(plot)?;
     }
     let scene = load_match_file(&args.matches, args.width.zip(args.height))?;
-    let focal_prior = args.focal.unwrap_or_else(|| scene.focal_prior());
+    let focal_prior = match args.focal {
+        Some(f) => f,
+        None => sidecar_focal_prior(&args.matches)?.unwrap_or_else(|| scene.focal_prior()),
+    };
     let coordinates =
         check_coordinates(&scene).with_context(|| args.matches.display().to_string())?;
     if let Some(warning) = coordinates {
@@ -357,4 +360,14 @@ fn focal_line(
         ),
         (None, _) => "\n  f_peak: none (baseline)".to_string(),
     }
+}
+
+/// The sidecar's `focal_prior` (`FILE.toml` beside the match file), when
+/// the sidecar exists and gives one.
+fn sidecar_focal_prior(matches: &std::path::Path) -> Result<Option<f64>> {
+    let path = datasets::user::sidecar_path(matches);
+    if !path.is_file() {
+        return Ok(None);
+    }
+    Ok(datasets::user::read_sidecar(&path)?.focal_prior)
 }
