@@ -19,6 +19,7 @@ mod scene_result;
 mod test_schema;
 
 pub use csv_table::{write_atomic, write_bytes_atomic, CsvAppender, CsvTable};
+pub use datasets::echo;
 pub use scene_result::SceneResult;
 
 /// Per-scene results, one row per (combination, scene).
@@ -120,5 +121,3 @@ mod examples {
         assert_eq!(name, "method-semical__tau_range-0.1");
     }
 }
-
-pub use datasets::echo;
