@@ -118,15 +118,12 @@ def test_same_seed_same_labels_and_principal_point_is_used(synthetic):
     assert c.principal_point == tuple(scene["principal_point"]) and c.focal_prior == 900.0
 
 
-def test_docstring_lists_every_key_with_its_default():
-    doc = sctl.segment.__doc__
+def test_docstring_points_to_the_generated_key_lists():
+    # The keys and defaults themselves are checked against the stub in
+    # test_stub.py; the docstring names where they are listed.
     assert "seed=12345" in sctl.segment.__text_signature__
-    for key, value in sctl.default_params().items():
-        if key == "seed":
-            continue
-        shown = {True: "True", False: "False"}.get(value) if isinstance(value, bool) else (
-            f'"{value}"' if isinstance(value, str) else repr(value))
-        assert re.search(rf"- {key} = {re.escape(shown)}\s", doc), (key, shown)
+    assert "sctl/__init__.pyi" in sctl.segment.__doc__
+    assert "Parameter keys" in sctl.segment.__doc__
 
 
 @pytest.mark.parametrize("kwargs, key", [
