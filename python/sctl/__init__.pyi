@@ -24,7 +24,7 @@ __all__ = [
 _Points = npt.ArrayLike  # (N, 2) pixel coordinates
 _Matrix = npt.ArrayLike  # (3, 3) or (K, 3, 3)
 _WeightSets = Union[Literal["adelaidermf", "hopef"], Sequence[Sequence[float]]]
-_Profile = Literal["default", "thesis", "fast", "large"]
+_Profile = Literal["default", "thesis"]
 
 @final
 class Segmentation:
@@ -92,12 +92,12 @@ def segment(
     profile: _Profile = "default",
     # keys: generated from segmentation::KEYS, see crates/cli/src/config/keys.rs
     method: Literal["baseline", "semical"] = "baseline",
-    num_samples: int = 3000,
+    num_samples: int = 1000,
     mss_size: int = 8,
     thr_px: float = 2.5,
     tau_diff: float = 0.05,
     tau_range: float = 0.2,
-    irls_iters: int = 5,
+    irls_iters: int = 1,
     irls_fit: Literal["normalized", "plain"] = "normalized",
     irls_unit_weight_fallback: bool = True,
     irls_sigma_offset_px: float = 0.0,
@@ -105,9 +105,9 @@ def segment(
     refine: bool = True,
     eight_point: Literal["normalized", "plain"] = "normalized",
     minimal_solver: Literal["five-point", "eight-point"] = "five-point",
-    minimal_solutions: Literal["best", "best-unpolished"] = "best",
-    sampling: Literal["uniform", "localized", "guided"] = "uniform",
-    guided_batch: int = 100,
+    minimal_solutions: Literal["best", "best-unpolished"] = "best-unpolished",
+    sampling: Literal["uniform", "localized", "guided"] = "guided",
+    guided_batch: int = 50,
     focal_solver: Literal["kocur", "bougnoux", "external"] = "kocur",
     weight_sets: Union[Literal["adelaidermf", "hopef"], Sequence[Sequence[float]]] = "adelaidermf",
     max_iters: int = 100,
@@ -117,8 +117,8 @@ def segment(
     linkage: Literal["t-linkage", "j-linkage"] = "t-linkage",
     min_cluster_size: int = 8,
     size_rule: Union[Literal["min-size"], Dict[str, float]] = "min-size",
-    final_assignment: Literal["none", "merge"] = "merge",
-    cluster_subset: int = 0,
+    final_assignment: Literal["nfa", "merge", "none"] = "nfa",
+    cluster_subset: int = 1000,
     subset_extension: Literal["preference-explained", "preference"] = "preference-explained",
     max_memory_mb: int = 0,
     seed: int = 12345,

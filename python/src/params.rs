@@ -46,16 +46,18 @@ pub fn profile_from(value: Option<&Bound<'_, PyAny>>) -> PyResult<Profile> {
     let Some(value) = value.filter(|v| !v.is_none()) else {
         return Ok(Profile::Default);
     };
-    value
-        .extract::<String>()
-        .ok()
-        .and_then(|name| Profile::from_name(&name))
-        .ok_or_else(|| {
-            value_error(format!(
-                "invalid value for `profile`: {value}; the profiles are: {}",
-                Profile::names()
-            ))
-        })
+    let name = value.extract::<String>().map_err(|_| {
+        value_error(format!(
+            "invalid value for `profile`: {value}; the profiles are: {}",
+            Profile::names()
+        ))
+    })?;
+    Profile::from_name(&name).ok_or_else(|| {
+        value_error(format!(
+            "invalid value for `profile`: {}",
+            Profile::unknown(&name)
+        ))
+    })
 }
 
 /// [`Params`] from keyword arguments named as its fields (a missing key
@@ -78,8 +80,8 @@ pub fn params_from_kwargs(
     Ok(params)
 }
 
-/// The parameters of `segment` on `profile` ("default", "thesis", "fast"
-/// or "large"; default "default"), as a dict.
+/// The parameters of `segment` on `profile` ("default" or "thesis";
+/// default "default"), as a dict.
 #[pyfunction]
 #[pyo3(signature = (profile=None), text_signature = "(profile=\"default\")")]
 pub fn default_params<'py>(

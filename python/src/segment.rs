@@ -61,13 +61,12 @@ fn warn(py: Python<'_>, message: &str) -> PyResult<()> {
 ///     Prior focal length of the focal solvers (px). Default: max(W, H).
 /// profile : str, default "default"
 ///     The named parameter set that gives every key not passed: "default"
-///     (the defaults below), "thesis" (the thesis text's Algorithm 1:
-///     method="semical", minimal_solver="eight-point"), "fast" (fewer
-///     samples and IRLS iterations, guided sampling, 200 matches clustered
-///     and the others joined: 12-33 times faster per scene, within 2
-///     points of the default's ME on the synthetic test data, 4.4 % against
-///     4.0 % on AdelaideRMF) or "large" (1 000 matches and more: localized sampling,
-///     clusters under 2 % of the matches dropped). ``sctl.default_params(profile)`` lists its values.
+///     (the defaults below: one configuration for 8 to 50 000 matches,
+///     the motions chosen by their a-contrario significance) or "thesis"
+///     (the thesis text's Algorithm 1: method="semical",
+///     minimal_solver="eight-point"). The "fast" and "large" profiles of
+///     earlier versions were folded into the default.
+///     ``sctl.default_params(profile)`` lists its values.
 /// seed : int, default 12345
 ///     Seed of the hypothesis sampling. The labels depend on the input, the
 ///     parameters and the seed only (not on the number of threads).

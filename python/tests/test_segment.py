@@ -23,8 +23,7 @@ VARIANTS = [
      "weight_sets": [[1e-3, 1.0, 1e-3, 1.0], [1e-4, 2.0, 1e-4, 2.0]]},
     # A profile as the base: `profile` in the [pipeline] table, and a keyword.
     {"profile": "thesis", "tau_range": 0.25},
-    {"profile": "fast"},
-    {"profile": "fast", "sampling": "localized", "minimal_solutions": "best"},
+    {"profile": "default", "sampling": "localized", "minimal_solutions": "best"},
     {"final_assignment": "none", "size_rule": {"relative-min": 0.05}, "cluster_subset": 40,
      "subset_extension": "preference"},
 ]
@@ -203,8 +202,8 @@ def test_profile_gives_every_key_not_passed(synthetic):
     assert sctl.default_params() == sctl.default_params("default") == sctl.default_params(profile=None)
     thesis = sctl.default_params(profile="thesis")
     assert (thesis["method"], thesis["minimal_solver"]) == ("semical", "eight-point")
-    assert sctl.default_params("fast") != sctl.default_params()
-    for profile in ("default", "thesis", "fast"):
+    assert thesis != sctl.default_params()
+    for profile in ("default", "thesis"):
         params = sctl.default_params(profile)
         assert set(params) == set(sctl.default_params())
         # Keywords override the profile's values; the others are the profile's.
@@ -213,14 +212,20 @@ def test_profile_gives_every_key_not_passed(synthetic):
         explicit = sctl.segment(*args, **{**params, "num_samples": 200, "seed": 3})
         np.testing.assert_array_equal(seg.labels, explicit.labels, err_msg=profile)
         assert (seg.generated, seg.refined, seg.kept) == (explicit.generated, explicit.refined, explicit.kept)
-    assert sctl.segment(*args, profile="fast").params == sctl.default_params("fast")
+    assert sctl.segment(*args, profile="thesis", num_samples=100).params == {**thesis, "num_samples": 100}
 
 
 @pytest.mark.parametrize("profile", ["quick", "Fast", 3, ""])
 def test_unknown_profile_raises_value_error_listing_the_profiles(synthetic, profile):
     scene = sctl.load_hopef(synthetic[0])
-    message = r"`profile`.*the profiles are: default, thesis, fast, large"
+    message = r"`profile`.*default, thesis"
     with pytest.raises(ValueError, match=message):
         sctl.segment(scene["x1"], scene["x2"], scene["image_size"], profile=profile)
     with pytest.raises(ValueError, match=message):
+        sctl.default_params(profile)
+
+
+@pytest.mark.parametrize("profile", ["fast", "large"])
+def test_a_retired_profile_says_what_became_of_it(profile):
+    with pytest.raises(ValueError, match=rf"profile `{profile}` was folded into the default"):
         sctl.default_params(profile)

@@ -11,7 +11,7 @@
 //!
 //! ```text
 //! cargo run --release -p sctl --example cluster_anatomy -- \
-//!     [--preset adelaide-like] [--from 800] [--to 819] [--profile fast] \
+//!     [--preset adelaide-like] [--from 800] [--to 819] [--profile thesis] \
 //!     [--config FILE.toml] [--num-samples M] [--seeds 12345,23456,34567]
 //! ```
 
@@ -36,7 +36,7 @@ fn parse(mut args: impl Iterator<Item = String>) -> Result<Options, String> {
         preset: Preset::AdelaideLike,
         from: 800,
         to: 819,
-        params: Params::fast(),
+        params: Params::default(),
         seeds: vec![12345, 23456, 34567],
     };
     let mut num_samples = None;

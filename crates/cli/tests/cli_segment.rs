@@ -184,14 +184,14 @@ fn bad_inputs_fail_with_the_file_and_the_problem() {
     );
     bad_config(
         "[pipeline]\nprofile = \"quick\"\n",
-        "params.toml:2: pipeline.profile: unknown variant `quick`, expected one of `default`, `thesis`, `fast`, `large`",
+        "params.toml:2: pipeline.profile: unknown profile `quick`; expected one of: default, thesis",
     );
     segment_1024x768(&matches)
         .args(["--profile", "quick"])
         .assert()
         .failure()
         .stderr(predicate::str::contains(
-            "unknown profile `quick`; the profiles are: default, thesis, fast, large",
+            "unknown profile `quick`; expected one of: default, thesis",
         ));
     // A memory bound below the clustering's need stops at once and says
     // what it would need: the quick scene's 150 matches at M 20 000 need
@@ -409,10 +409,10 @@ fn profile_sets_every_key_the_config_does_not_give() {
     };
     let flag = std::ffi::OsStr::new("--config");
     // The flag alone: the profile's parameters, which are not the default's.
-    assert_ne!(Params::fast(), Params::default());
-    let fast = explicit("fast.toml", Params::fast());
-    let (labels, summary) = segment(&["--profile".as_ref(), "fast".as_ref()]);
-    assert_eq!((labels, summary), segment(&[flag, fast.as_os_str()]));
+    assert_ne!(Params::thesis(), Params::default());
+    let thesis_file = explicit("thesis_all.toml", Params::thesis());
+    let (labels, summary) = segment(&["--profile".as_ref(), "thesis".as_ref()]);
+    assert_eq!((labels, summary), segment(&[flag, thesis_file.as_os_str()]));
 
     // A file's own profile applies; the file's keys override it.
     let thesis_300 = Params::thesis().with(|q| q.sampling.num_samples = 300);
@@ -427,19 +427,19 @@ fn profile_sets_every_key_the_config_does_not_give() {
     assert_eq!(from_file, segment(&[flag, thesis.as_os_str()]));
 
     // --profile replaces the file's profile; the file's keys still override.
-    let fast_300 = explicit(
-        "fast_300.toml",
-        Params::fast().with(|q| q.sampling.num_samples = 300),
+    let default_300 = explicit(
+        "default_300.toml",
+        Params::default().with(|q| q.sampling.num_samples = 300),
     );
     let args = [
         flag,
         on_thesis.as_os_str(),
         "--profile".as_ref(),
-        "fast".as_ref(),
+        "default".as_ref(),
     ];
     let flagged = segment(&args);
     assert_ne!(flagged, from_file);
-    assert_eq!(flagged, segment(&[flag, fast_300.as_os_str()]));
+    assert_eq!(flagged, segment(&[flag, default_300.as_os_str()]));
 }
 
 #[test]

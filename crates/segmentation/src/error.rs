@@ -104,6 +104,9 @@ pub enum SegmentationError {
     /// dropped.
     #[error("interrupted")]
     Interrupted,
+    /// The model selection refused the clusters (`final_assignment = "nfa"`).
+    #[error(transparent)]
+    Selection(#[from] crate::selection::SelectionError),
 }
 
 impl From<ClusteringError> for SegmentationError {

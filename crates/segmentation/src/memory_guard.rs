@@ -50,7 +50,8 @@ impl MemoryNeed {
 ///
 /// ```
 /// use segmentation::{memory_need, Params};
-/// let params = Params::default();
+/// // Every match clustered: the need grows as N².
+/// let params = Params::default().with(|q| q.sampling.cluster_subset = 0);
 /// let small = memory_need(1_000, &params).total();
 /// let large = memory_need(100_000, &params).total();
 /// assert!(small < 100_000_000 && large > 50 * small);

@@ -4,6 +4,7 @@
 use crate::assignment::members;
 use crate::memory_guard::{memory_limit, ASSUMED_PREFERENCE_DENSITY};
 use crate::merge::inlier_words;
+use crate::selection::select_groups;
 use crate::{
     available_memory, centred_points, check_available_memory, check_matches,
     estimate_hypothesis_focals, extend_labels, focal_filter, generate_hypotheses_cancellable,
@@ -265,12 +266,14 @@ fn cluster_kept(
 
     let t = Instant::now();
     let (labels, clusters) = match params.selection.final_assignment {
-        FinalAssignment::None => (clustering.labels, clustering.clusters_after_filter),
         FinalAssignment::Merge => with_count(merge_explained(
             &clustering.labels,
             clustering.clusters_after_filter,
             &step7.inliers,
         )),
+        FinalAssignment::None | FinalAssignment::Nfa => {
+            (clustering.labels, clustering.clusters_after_filter)
+        }
     };
     let (labels, all_points) = if subset_active {
         let all = centred_points(matches, params)?;
@@ -286,6 +289,15 @@ fn cluster_kept(
         (labels, Cow::Owned(all))
     } else {
         (labels, Cow::Borrowed(points))
+    };
+    let (labels, clusters) = if params.selection.final_assignment == FinalAssignment::Nfa {
+        // The clusters, every match labelled, are the selection's groups.
+        let groups = members(&labels, clusters);
+        let thr = params.refinement.thr_px;
+        let selected = select_groups(&all_points, &groups, matches.image_size, thr)?;
+        (selected.labels, selected.motions)
+    } else {
+        (labels, clusters)
     };
     segmentation.clusters = cluster_models(&all_points, &labels, clusters);
     segmentation.timings.cluster_fit = t.elapsed().as_secs_f64();

@@ -138,6 +138,16 @@ param_enum! {
         /// hypothesis) explains at least [`crate::MERGE_SHARE`] of its matches
         /// ([`crate::merge_explained`]); no match changes cluster otherwise.
         Merge,
+        /// A-contrario model selection over every match
+        /// ([`crate::selection::select_groups`]): a cluster is a motion when
+        /// the number of false alarms of its F is below 1 given the motions
+        /// detected before it (Moisan & Stival 2004; AC-RANSAC, Moisan,
+        /// Moulon & Monasse 2012; MAC-RANSAC, Rabin et al. 2010); the
+        /// other clusters join the detected F that explains most of their
+        /// matches; matches of no cluster (the clustering's outliers and
+        /// those left out of a `cluster_subset`) take the nearest detected
+        /// F within `thr_px`; the rest are outliers.
+        Nfa,
     }
 }
 

@@ -11,9 +11,15 @@ use segmentation::{
 use std::time::Duration;
 use support::{in_pool, matches, quick_scene};
 
+/// The default with every match clustered (`cluster_subset = 0`): the
+/// need then grows as N².
+fn every_match_clustered() -> Params {
+    Params::default().with(|q| q.sampling.cluster_subset = 0)
+}
+
 #[test]
 fn the_automatic_bound_refuses_with_the_figures_and_what_to_change() {
-    let params = Params::default();
+    let params = every_match_clustered();
     let need = memory_need(5_000_000, &params);
     let available = Some(need.total() - 1);
     let err = check_available_memory(5_000_000, &params, available).unwrap_err();
@@ -50,15 +56,19 @@ fn the_automatic_bound_refuses_with_the_figures_and_what_to_change() {
 
 #[test]
 fn a_cluster_subset_or_fewer_samples_lower_the_need() {
-    let params = Params::default();
+    // Uniform sampling: guided sampling's co-inlier counts do not shrink with M.
+    let params = every_match_clustered().with(|q| {
+        q.sampling.num_samples = 3000;
+        q.sampling.sampling = segmentation::Sampling::Uniform;
+    });
     let full = memory_need(5_000_000, &params);
     let subset = memory_need(
         5_000_000,
-        &Params::default().with(|q| q.sampling.cluster_subset = 1000),
+        &params.clone().with(|q| q.sampling.cluster_subset = 1000),
     );
     let fewer = memory_need(
         5_000_000,
-        &Params::default().with(|q| q.sampling.num_samples = 300),
+        &params.clone().with(|q| q.sampling.num_samples = 300),
     );
     assert!(subset.clustering * 1000 < full.clustering);
     assert!(fewer.total() * 5 < full.total());
@@ -87,7 +97,7 @@ fn a_small_explicit_bound_refuses_a_large_input_before_sampling() {
     let p1: Vec<[f64; 2]> = (0..n)
         .map(|i| [(i % 640) as f64, (i % 480) as f64])
         .collect();
-    let params = Params::default().with(|q| q.max_memory_mb = 50);
+    let params = every_match_clustered().with(|q| q.max_memory_mb = 50);
     let err = segment(&Matches::new(&p1, &p1, (640, 480)), &params).unwrap_err();
     assert!(
         matches!(err, SegmentationError::MemoryBound { limit_mb: 50, .. }),

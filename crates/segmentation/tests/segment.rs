@@ -403,7 +403,7 @@ fn guided_sampling_starts_unguided_and_does_not_depend_on_the_thread_count() {
     use segmentation::{generate_hypotheses, Sampling};
     let scene = quick_scene(2, 901);
     // One batch of all M samples: never guided.
-    let mixed = Params::fast().with(|q| {
+    let mixed = Params::default().with(|q| {
         q.sampling.num_samples = 300;
         q.sampling.sampling = Sampling::Guided;
         q.sampling.guided_batch = 300;

@@ -44,16 +44,14 @@ pub struct Args {
     /// works too); the keys it does not give take the values of its
     /// `profile` key, or of --profile when given [default: the parameters of
     /// --profile; those of `default` are five-point hypotheses at the focal
-    /// prior, no focal filter, merged clusters, Table 1 values].
+    /// prior, no focal filter, at most 1000 matches clustered, the motions
+    /// chosen by their a-contrario significance (NFA < 1)].
     #[arg(long, value_name = "FILE")]
     pub config: Option<PathBuf>,
-    /// Named parameter set: default | thesis (the thesis text's Algorithm 1)
-    /// | fast (fewer samples and IRLS iterations, guided sampling, 200 matches
-    /// clustered and the others joined: 12-33 times faster per scene, within
-    /// 2 points of the default's ME on the synthetic test data, 4.4 % against
-    /// 4.0 % on AdelaideRMF) | large (1 000 matches and more: localized
-    /// sampling, clusters under 2 % of the matches dropped, 1000 matches
-    /// clustered and the others joined). With --config it replaces the file's
+    /// Named parameter set: default (one configuration for 8 to 50 000
+    /// matches) | thesis (the thesis text's Algorithm 1). The `fast` and
+    /// `large` profiles of earlier versions were folded into the default.
+    /// With --config it replaces the file's
     /// `profile` key; the keys the file gives still override it [default:
     /// the file's `profile`, else default].
     #[arg(long, value_name = "NAME", value_parser = parse_profile)]
@@ -81,14 +79,9 @@ pub struct Args {
 }
 
 /// The profile called `name`; an unknown name is an error listing the
-/// profiles.
+/// profiles (or saying what became of a retired one).
 fn parse_profile(name: &str) -> Result<Profile, String> {
-    Profile::from_name(name).ok_or_else(|| {
-        format!(
-            "unknown profile `{name}`; the profiles are: {}",
-            Profile::names()
-        )
-    })
+    Profile::from_name(name).ok_or_else(|| Profile::unknown(name))
 }
 
 /// Parses `--width`/`--height`: a whole number of pixels, 1 to

@@ -112,7 +112,7 @@ mod tests {
                 height: Some(1),
             },
             pipeline: PipelineConfig {
-                profile: Profile::Fast,
+                profile: Profile::Thesis,
                 focal_file: "f.csv".into(),
                 ..PipelineConfig::default()
             },

@@ -32,9 +32,8 @@ use std::sync::LazyLock;
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct PipelineConfig {
     /// The named parameter set whose values the keys this table does not
-    /// give take: `default` ([`Params::default`]), `thesis`
-    /// ([`Params::thesis`]), `fast` ([`Params::fast`]) or `large`
-    /// ([`Params::large`]). Applied when a
+    /// give take: `default` ([`Params::default`]) or `thesis`
+    /// ([`Params::thesis`]). Applied when a
     /// file is read ([`PipelineConfig::load`],
     /// [`super::ExperimentConfig::parse`]): `params` holds the resolved
     /// values. Not one of [`PIPELINE_KEYS`] (it cannot be swept).
@@ -146,7 +145,7 @@ impl<'de, A: MapAccess<'de>> MapAccess<'de> for &mut HarnessKeys<A> {
                 None => return Ok(None),
                 Some(PipelineKey::Param(key)) => return Ok(Some(key)),
                 Some(PipelineKey::Profile(unused)) => {
-                    self.profile = self.map.next_value()?;
+                    self.profile = self.map.next_value::<ProfileName>()?.0;
                     seed = unused;
                 }
                 Some(PipelineKey::FocalFile(unused)) => {
@@ -200,6 +199,19 @@ const fn same_str(a: &str, b: &str) -> bool {
         i += 1;
     }
     true
+}
+
+/// A profile read by name: an unknown or retired name is an error saying
+/// so ([`Profile::unknown`]), located at the `profile` key.
+struct ProfileName(Profile);
+
+impl<'de> Deserialize<'de> for ProfileName {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let name = String::deserialize(deserializer)?;
+        Profile::from_name(&name)
+            .map(ProfileName)
+            .ok_or_else(|| D::Error::custom(Profile::unknown(&name)))
+    }
 }
 
 fn is_default_profile(profile: &Profile) -> bool {

@@ -38,7 +38,7 @@ fn pipeline_keys_follow_the_declaration_order() {
 }
 
 #[test]
-fn defaults_are_table_1() {
+fn defaults_are_the_default_profile_and_table_1_the_thesis() {
     let c = parse(BASE).unwrap();
     let p = &c.pipeline;
     assert_eq!(
@@ -50,9 +50,12 @@ fn defaults_are_table_1() {
             p.params.focal.tau_range,
             p.params.refinement.irls_iters
         ),
-        (3000, 8, 2.5, 0.05, 0.20, 5)
+        (1000, 8, 2.5, 0.05, 0.20, 1)
     );
-    // The best measured configuration: five-point hypotheses, no filter.
+    // Table 1's M and IRLS iterations are the thesis profile's.
+    let t = Params::thesis();
+    assert_eq!((t.sampling.num_samples, t.refinement.irls_iters), (3000, 5));
+    // The default: five-point hypotheses, no filter.
     assert_eq!(p.params.focal.method, Method::Baseline);
     assert_eq!(
         p.params.sampling.minimal_solver,
@@ -88,11 +91,11 @@ fn sampling_and_final_assignment_read_and_reject_bad_values() {
     let c = parse(BASE).unwrap();
     assert_eq!(
         c.pipeline.params.sampling.sampling,
-        segmentation::Sampling::Uniform
+        segmentation::Sampling::Guided
     );
     assert_eq!(
         c.pipeline.params.selection.final_assignment,
-        segmentation::FinalAssignment::Merge
+        segmentation::FinalAssignment::Nfa
     );
     let c = parse(&format!(
         "{BASE}[pipeline]\nsampling = \"localized\"\nfinal_assignment = \"none\"\n"
@@ -325,21 +328,31 @@ fn bad_profile_and_errors_beside_it_name_key_and_line() {
         .unwrap_err()
         .to_string();
     assert!(
-        err.starts_with("exp.toml:6: pipeline.profile: unknown variant `quick`"),
+        err.starts_with("exp.toml:6: pipeline.profile: unknown profile `quick`"),
         "{err}"
     );
-    for name in ["default", "thesis", "fast", "large"] {
-        assert!(err.contains(&format!("`{name}`")), "{err}");
-    }
-    let err = parse(&format!("{BASE}[pipeline]\nprofile = \"fast\"\nthr = 3\n"))
+    assert!(err.contains("default, thesis"), "{err}");
+    // A retired profile says what became of it.
+    let err = parse(&format!("{BASE}[pipeline]\nprofile = \"large\"\n"))
         .unwrap_err()
         .to_string();
+    assert!(
+        err.starts_with(
+            "exp.toml:5: pipeline.profile: profile `large` was folded into the default"
+        ),
+        "{err}"
+    );
+    let err = parse(&format!(
+        "{BASE}[pipeline]\nprofile = \"thesis\"\nthr = 3\n"
+    ))
+    .unwrap_err()
+    .to_string();
     assert!(
         err.starts_with("exp.toml:6: pipeline.thr: unknown field `thr`"),
         "{err}"
     );
     let err = parse(&format!(
-        "{BASE}[pipeline]\nprofile = \"fast\"\n\ntau_range = -0.1\n"
+        "{BASE}[pipeline]\nprofile = \"thesis\"\n\ntau_range = -0.1\n"
     ))
     .unwrap_err()
     .to_string();
@@ -352,15 +365,15 @@ fn bad_profile_and_errors_beside_it_name_key_and_line() {
 #[test]
 fn resolved_config_on_a_profile_reads_back_the_same() {
     let c = parse(&format!(
-        "{BASE}[pipeline]\nprofile = \"fast\"\nthr_px = 3.5\n[sweep]\nseed = [1, 2]\n"
+        "{BASE}[pipeline]\nprofile = \"thesis\"\nthr_px = 3.5\n[sweep]\nseed = [1, 2]\n"
     ))
     .unwrap();
     assert_eq!(
         c.pipeline.params(),
-        Params::fast().with(|q| q.refinement.thr_px = 3.5)
+        Params::thesis().with(|q| q.refinement.thr_px = 3.5)
     );
     let text = c.to_toml();
-    assert!(text.contains("profile = \"fast\""), "{text}");
+    assert!(text.contains("profile = \"thesis\""), "{text}");
     assert_eq!(parse(&text).unwrap(), c);
     // Without a profile the resolved file does not mention one.
     assert!(!parse(BASE).unwrap().to_toml().contains("profile"));
@@ -378,20 +391,15 @@ fn pipeline_file_reads_its_profile_or_the_given_one() {
     let thesis = Params::thesis().with(|q| q.sampling.num_samples = 700);
     assert_eq!(PipelineConfig::load(&path).unwrap().params(), thesis);
     // A given profile replaces the file's; the file's keys still override.
-    let fast = PipelineConfig::load_with_profile(&path, Some(Profile::Fast)).unwrap();
-    assert_eq!(
-        fast.params(),
-        Params::fast().with(|q| q.sampling.num_samples = 700)
-    );
-    assert_eq!(fast.profile, Profile::Fast);
     let default = PipelineConfig::load_with_profile(&path, Some(Profile::Default)).unwrap();
     assert_eq!(
         default.params(),
         Params::default().with(|q| q.sampling.num_samples = 700)
     );
+    assert_eq!(default.profile, Profile::Default);
     // No [pipeline] table: the profile's values.
     std::fs::write(&path, "name = \"x\"\n").unwrap();
-    let fast = PipelineConfig::load_with_profile(&path, Some(Profile::Fast)).unwrap();
-    assert_eq!(fast, PipelineConfig::of_profile(Profile::Fast));
-    assert_eq!(fast.params(), Params::fast());
+    let thesis = PipelineConfig::load_with_profile(&path, Some(Profile::Thesis)).unwrap();
+    assert_eq!(thesis, PipelineConfig::of_profile(Profile::Thesis));
+    assert_eq!(thesis.params(), Params::thesis());
 }

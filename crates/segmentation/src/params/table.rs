@@ -183,8 +183,8 @@ param_keys! {
     clustering.min_cluster_size: usize, Int, "", "smaller clusters become outliers (step 9)";
     clustering.size_rule: SizeRule, SizeRule, "min-size | { relative-min = f }",
         "clusters kept: min_cluster_size alone, or also >= ceil(f N) points";
-    selection.final_assignment: FinalAssignment, Choice, "none | merge",
-        "merge: a cluster joins a larger one whose model explains 80 % of it";
+    selection.final_assignment: FinalAssignment, Choice, "nfa | merge | none",
+        "nfa: the clusters whose F is significant (NFA < 1) are the motions; merge: 80 % rule";
     sampling.cluster_subset: usize, Int, "0 or >= mss_size",
         "> 0: steps 1-9 on this many random matches, the others joined after";
     selection.subset_extension: SubsetExtension, Choice, "preference-explained | preference",

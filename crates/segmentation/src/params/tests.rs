@@ -1,10 +1,21 @@
 use super::*;
 
-/// The default with one change made by `edit`.
+/// The default with uniform sampling, each five-point root polished and
+/// every match clustered ([`base`]), and one change made by `edit`.
 fn with(edit: impl FnOnce(&mut Params)) -> Params {
-    let mut p = Params::default();
+    let mut p = base();
     edit(&mut p);
     p
+}
+
+/// The default with the stage switches that the tests below change set to
+/// their other value (uniform sampling, `best`, every match clustered).
+fn base() -> Params {
+    Params::default().with(|p| {
+        p.sampling.sampling = Sampling::Uniform;
+        p.sampling.minimal_solutions = MinimalSolutions::Best;
+        p.sampling.cluster_subset = 0;
+    })
 }
 
 #[test]
@@ -40,7 +51,7 @@ fn every_range_check_names_its_key() {
 
 #[test]
 fn keys_separate_what_changes_the_stage() {
-    let a = Params::default();
+    let a = base();
     let b = with(|p| {
         p.focal.method = Method::Baseline;
         p.focal.tau_range = 0.3;
@@ -61,12 +72,12 @@ fn keys_separate_what_changes_the_stage() {
         assert_eq!(a.focal_key(), changed.focal_key(), "{changed:?}");
     }
     // The batch of guided sampling matters to guided sampling only.
-    let batch = with(|p| p.sampling.guided_batch = 50);
+    let batch = with(|p| p.sampling.guided_batch = 100);
     assert_eq!(a.hypothesis_key(), batch.hypothesis_key());
     let guided = with(|p| p.sampling.sampling = Sampling::Guided);
     let guided_batch = Params {
         sampling: SamplingParams {
-            guided_batch: 50,
+            guided_batch: 100,
             ..guided.sampling.clone()
         },
         ..guided.clone()

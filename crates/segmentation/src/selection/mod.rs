@@ -17,6 +17,8 @@
 //! [`CLUSTER_REFIT_ITERS`] iterations) on its matches alone.
 
 mod binomial;
+#[cfg(test)]
+mod default_tests;
 pub mod gric;
 pub mod nfa;
 #[cfg(test)]
@@ -71,6 +73,14 @@ pub enum SelectionError {
     LengthMismatch {
         /// Number of labels.
         labels: usize,
+        /// Number of matches.
+        points: usize,
+    },
+    /// A group names a match beyond the last.
+    #[error("selection: a group names match {index}, but there are {points} matches")]
+    BadIndex {
+        /// The index.
+        index: usize,
         /// Number of matches.
         points: usize,
     },
@@ -153,6 +163,10 @@ fn check(
     if let Some((index, &label)) = labels.iter().enumerate().find(|(_, &l)| l < -1) {
         return Err(SelectionError::BadLabel { index, label });
     }
+    check_scene(image_size, thr_px)
+}
+
+fn check_scene(image_size: (u32, u32), thr_px: f64) -> Result<(), SelectionError> {
     if !(thr_px.is_finite() && thr_px > 0.0) {
         return Err(SelectionError::BadThreshold(thr_px));
     }
@@ -162,11 +176,56 @@ fn check(
     Ok(())
 }
 
+/// The motions among `groups` (lists of indices into the
+/// principal-point-centred `points`, e.g. T-Linkage's clusters, or those of
+/// a subset of the matches) by a-contrario detection over every match
+/// ([`nfa::detect`]), labelled as [`Strategy::Nfa`] labels them: a match
+/// of a detected group takes its motion; a group not detected joins, as a
+/// whole, the detected F that explains most of its matches within
+/// `thr_px` (those it explains take its label, the others the nearest
+/// detected F within `thr_px`, or −1); a match of no group takes the
+/// nearest detected F within `thr_px`, or −1. The cost is linear in the
+/// number of matches for a given number of groups.
+///
+/// ```
+/// use geometry::Correspondences;
+/// use segmentation::selection::select_groups;
+/// // No group: no motion, every match an outlier.
+/// let p = [[0.0, 0.0]; 20];
+/// let pts = Correspondences::new(&p, &p).unwrap();
+/// let s = select_groups(&pts, &[], (640, 480), 2.5).unwrap();
+/// assert_eq!((s.motions, s.labels), (0, vec![-1; 20]));
+/// ```
+pub fn select_groups(
+    points: &Correspondences,
+    groups: &[Vec<usize>],
+    image_size: (u32, u32),
+    thr_px: f64,
+) -> Result<Selection, SelectionError> {
+    if let Some(&index) = groups.iter().flatten().find(|&&m| m >= points.len()) {
+        return Err(SelectionError::BadIndex {
+            index,
+            points: points.len(),
+        });
+    }
+    check_scene(image_size, thr_px)?;
+    let irls = IrlsParams {
+        thr_px,
+        max_iters: CLUSTER_REFIT_ITERS,
+        ..IrlsParams::default()
+    };
+    let labels = by_nfa(points, groups, image_size, thr_px, &irls);
+    let motions = labels.iter().map(|&l| l + 1).max().unwrap_or(0) as usize;
+    Ok(Selection { labels, motions })
+}
+
 /// Labels after [`nfa::detect`]: the detected groups' matches keep their
 /// group; another group joins, as a whole, the detected F that explains
 /// (within `thr_px`, the band that explains a match in the detection) the
 /// most of its matches: those it explains take its label, the others the
-/// detected F nearest to them within `thr_px`, or are outliers.
+/// detected F nearest to them within `thr_px`, or are outliers; a match of
+/// no group takes the detected F nearest to it within `thr_px`, or is an
+/// outlier.
 fn by_nfa(
     points: &Correspondences,
     groups: &[Vec<usize>],
@@ -175,7 +234,6 @@ fn by_nfa(
     irls: &IrlsParams,
 ) -> Vec<i32> {
     let detections = nfa::detect(points, groups, image_size, thr_px, irls);
-    let n = points.len();
     let residuals: Vec<Vec<f64>> = detections
         .iter()
         .map(|d| sampson_residuals(points, &d.f))
@@ -188,16 +246,15 @@ fn by_nfa(
             .min_by(|a, b| a.1[m].total_cmp(&b.1[m]))
             .map_or(-1, |(d, _)| d as i32)
     };
-    let mut assigned = vec![-1_i32; n];
+    let mut assigned: Vec<i32> = (0..points.len()).map(nearest).collect();
     for g in groups {
         let explained = |r: &Vec<f64>| g.iter().filter(|&&m| r[m] <= thr_px).count();
         let joined =
             (0..residuals.len()).max_by_key(|&d| (explained(&residuals[d]), std::cmp::Reverse(d)));
-        for &m in g {
-            assigned[m] = match joined {
-                Some(d) if residuals[d][m] <= thr_px => d as i32,
-                _ => nearest(m),
-            };
+        if let Some(d) = joined {
+            g.iter()
+                .filter(|&&m| residuals[d][m] <= thr_px)
+                .for_each(|&m| assigned[m] = d as i32);
         }
     }
     for (d, det) in detections.iter().enumerate() {

@@ -8,22 +8,22 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 
-const SIZE: (u32, u32) = (640, 480);
-const FOCAL: f64 = 700.0;
-const NOISE_PX: f64 = 0.5;
-const THR_PX: f64 = 2.5;
+pub(super) const SIZE: (u32, u32) = (640, 480);
+pub(super) const FOCAL: f64 = 700.0;
+pub(super) const NOISE_PX: f64 = 0.5;
+pub(super) const THR_PX: f64 = 2.5;
 
 /// A rigid motion of points between the two views, x₂ = R x₁ + t, of
 /// points at depths in `depth` (in units of the baseline scale).
 #[derive(Clone, Copy)]
-struct Motion {
+pub(super) struct Motion {
     r: Rotation3<f64>,
     t: Vector3<f64>,
     depth: (f64, f64),
 }
 
 impl Motion {
-    fn new(axis_angle: [f64; 3], t: [f64; 3]) -> Self {
+    pub(super) fn new(axis_angle: [f64; 3], t: [f64; 3]) -> Self {
         Self {
             r: Rotation3::new(Vector3::from(axis_angle)),
             t: Vector3::from(t),
@@ -63,14 +63,20 @@ impl Motion {
 
 /// Matches and ground truth (−1 outliers, 0, 1, … motions).
 #[derive(Default)]
-struct Scene {
-    p1: Vec<[f64; 2]>,
-    p2: Vec<[f64; 2]>,
-    truth: Vec<i32>,
+pub(super) struct Scene {
+    pub(super) p1: Vec<[f64; 2]>,
+    pub(super) p2: Vec<[f64; 2]>,
+    pub(super) truth: Vec<i32>,
 }
 
 impl Scene {
-    fn add_motion(&mut self, rng: &mut ChaCha8Rng, m: &Motion, count: usize, region: (f64, f64)) {
+    pub(super) fn add_motion(
+        &mut self,
+        rng: &mut ChaCha8Rng,
+        m: &Motion,
+        count: usize,
+        region: (f64, f64),
+    ) {
         let noise = Normal::new(0.0, NOISE_PX).unwrap();
         let label = self.truth.iter().max().map_or(0, |&l| l + 1);
         let mut added = 0;
@@ -85,7 +91,7 @@ impl Scene {
         }
     }
 
-    fn add_outliers(&mut self, rng: &mut ChaCha8Rng, count: usize) {
+    pub(super) fn add_outliers(&mut self, rng: &mut ChaCha8Rng, count: usize) {
         let mut point = || [rng.gen_range(-319.0..319.0), rng.gen_range(-239.0..239.0)];
         for _ in 0..count {
             let (a, b) = (point(), point());
@@ -101,14 +107,14 @@ impl Scene {
 }
 
 /// The background: the camera moves forward and turns a little.
-fn background() -> Motion {
+pub(super) fn background() -> Motion {
     Motion::new([0.0, 0.02, 0.0], [0.05, 0.0, -0.6])
 }
 
 /// A mover (an object at depths 6–7) whose matches in `region` lie `px`
 /// (median Sampson distance) from the background's F: the background's
 /// motion with an extra sideways translation, scaled by bisection.
-fn mover_at(rng_seed: u64, px: f64, region: (f64, f64)) -> Motion {
+pub(super) fn mover_at(rng_seed: u64, px: f64, region: (f64, f64)) -> Motion {
     let bg = background();
     let f_bg = bg.fundamental();
     let median_distance = |s: f64| {
@@ -159,7 +165,7 @@ fn clustering(truth: &[i32], fragments: usize, outlier_cluster: usize) -> Vec<i3
 
 /// The share of `truth`'s motion `t` whose selected label is the one most
 /// of them have.
-fn kept_together(truth: &[i32], labels: &[i32], t: i32) -> f64 {
+pub(super) fn kept_together(truth: &[i32], labels: &[i32], t: i32) -> f64 {
     let mut counts = std::collections::HashMap::new();
     let of_t: Vec<i32> = truth
         .iter()
@@ -217,7 +223,7 @@ fn two_motions_with_different_fs_in_different_regions_stay_two() {
 }
 
 /// A mover of 2 % of N at 3 px from the background, 10 % outliers.
-fn small_mover(n: usize, seed: u64) -> Scene {
+pub(super) fn small_mover(n: usize, seed: u64) -> Scene {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut s = Scene::default();
     let mover = n / 50;
