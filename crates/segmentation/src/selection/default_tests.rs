@@ -67,7 +67,7 @@ fn the_default_finds_no_motion_in_pure_outliers_beyond_its_subset() {
 }
 
 #[test]
-#[ignore = "not achieved: 2 motions, but 56 % of the mover's matches together (results/notes/selection.md, The default end to end)"]
+#[ignore = "not achieved: 2 motions, but 66 % of the mover's matches together (results/notes/selection.md, The default end to end)"]
 fn the_default_keeps_a_mover_of_two_percent_at_three_px_at_n_20000() {
     let s = small_mover(20_000, 3);
     let (labels, motions) = default_labels(&s);

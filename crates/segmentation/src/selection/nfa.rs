@@ -215,6 +215,7 @@ pub fn detect(
             break;
         }
         remaining.swap_remove(pos);
+        let f = polish_on_support(points, f, &explained, thr_px, irls);
         explained.add(&sampson_residuals(points, &f), thr_px);
         detections.push(Detection {
             group,
@@ -223,6 +224,39 @@ pub fn detect(
         });
     }
     detections
+}
+
+/// Rounds of [`polish_on_support`].
+const POLISH_ROUNDS: usize = 2;
+
+/// A detected F refitted by IRLS-Tukey on every match within `thr_px` of
+/// it that no earlier detection explains, [`POLISH_ROUNDS`] times: the
+/// local optimisation of LO-RANSAC (Chum, Matas & Kittler, DAGM 2003). A
+/// group's F is fitted on the group's matches alone, which beyond a
+/// clustered subset are few; refitted on its whole support it explains
+/// the whole motion, whose remainder would otherwise be detected again.
+/// The significance is that of the F before; the polish changes what the
+/// detection explains and how it labels. Keeps `f` when a refit fails.
+fn polish_on_support(
+    points: &Correspondences,
+    mut f: Matrix3<f64>,
+    explained: &Explained,
+    thr_px: f64,
+    irls: &IrlsParams,
+) -> Matrix3<f64> {
+    for _ in 0..POLISH_ROUNDS {
+        let support: Vec<usize> = sampson_residuals(points, &f)
+            .iter()
+            .enumerate()
+            .filter(|&(m, &r)| r <= thr_px && !explained.0[m])
+            .map(|(m, _)| m)
+            .collect();
+        match refit(points, &support, irls) {
+            Some(refitted) => f = refitted,
+            None => break,
+        }
+    }
+    f
 }
 
 /// The matches the detections so far explain: within `thr_px` of a
