@@ -40,7 +40,7 @@ impl Motion {
     }
 
     /// F for principal-point-centred pixels: K⁻ᵀ [t]ₓ R K⁻¹.
-    fn fundamental(&self) -> Matrix3<f64> {
+    pub(super) fn fundamental(&self) -> Matrix3<f64> {
         let k_inv = Matrix3::new(1.0 / FOCAL, 0.0, 0.0, 0.0, 1.0 / FOCAL, 0.0, 0.0, 0.0, 1.0);
         k_inv.transpose() * self.t.cross_matrix() * self.r.matrix() * k_inv
     }
