@@ -294,14 +294,7 @@ fn cluster_kept(
         // The clusters, every match labelled, are the selection's groups.
         let groups = members(&labels, clusters);
         let thr = params.refinement.thr_px;
-        let held_out = held_out(matches.len(), &generated.subset);
-        let selected = select_groups(
-            &all_points,
-            &groups,
-            held_out.as_deref(),
-            matches.image_size,
-            thr,
-        )?;
+        let selected = select_groups(&all_points, &groups, matches.image_size, thr)?;
         (selected.labels, selected.motions)
     } else {
         (labels, clusters)
@@ -312,23 +305,6 @@ fn cluster_kept(
     segmentation.labels = labels;
     Ok(())
 }
-
-/// The matches the selection tests on alone (`final_assignment = "nfa"`,
-/// [`select_groups`]): those left out of the clustered `subset` when N is
-/// at least [`HELD_OUT_MIN_RATIO`] times the clustered matches, so that
-/// the test keeps its power; otherwise None (every match fitted and
-/// tested).
-fn held_out(n: usize, subset: &[usize]) -> Option<Vec<bool>> {
-    (n >= HELD_OUT_MIN_RATIO * subset.len()).then(|| {
-        let mut mask = vec![true; n];
-        subset.iter().for_each(|&i| mask[i] = false);
-        mask
-    })
-}
-
-/// N over the clustered matches from which the selection tests on the
-/// held-out matches alone ([`held_out`]).
-pub const HELD_OUT_MIN_RATIO: usize = 2;
 
 /// What step 7 gives steps 8–9: the preferences, the inlier sets of the
 /// entering hypotheses when `keep_inliers` (empty otherwise) and the

@@ -127,17 +127,17 @@ pub fn select(
         ..IrlsParams::default()
     };
     let labels = match strategy {
-        Strategy::Nfa => by_nfa(points, &groups_of(labels), None, image_size, thr_px, &irls),
+        Strategy::Nfa => by_nfa(points, &groups_of(labels), image_size, thr_px, &irls),
         Strategy::Gric => labels_of(
             &gric::merge_by_gric(points, &groups_of(labels), &irls),
             points.len(),
         ),
         Strategy::GricNfa => {
             let merged = gric::merge_by_gric(points, &groups_of(labels), &irls);
-            by_nfa(points, &merged, None, image_size, thr_px, &irls)
+            by_nfa(points, &merged, image_size, thr_px, &irls)
         }
         Strategy::NfaGric => {
-            let detected = by_nfa(points, &groups_of(labels), None, image_size, thr_px, &irls);
+            let detected = by_nfa(points, &groups_of(labels), image_size, thr_px, &irls);
             labels_of(
                 &gric::merge_by_gric(points, &groups_of(&detected), &irls),
                 points.len(),
@@ -187,33 +187,21 @@ fn check_scene(image_size: (u32, u32), thr_px: f64) -> Result<(), SelectionError
 /// nearest detected F within `thr_px`, or −1. The cost is linear in the
 /// number of matches for a given number of groups.
 ///
-/// `held_out` marks matches that took no part in making the groups (those
-/// left out of a clustered subset): when given, each group's F is fitted
-/// on its other matches and tested on the held-out ones alone
-/// ([`nfa::detect`]).
-///
 /// ```
 /// use geometry::Correspondences;
 /// use segmentation::selection::select_groups;
 /// // No group: no motion, every match an outlier.
 /// let p = [[0.0, 0.0]; 20];
 /// let pts = Correspondences::new(&p, &p).unwrap();
-/// let s = select_groups(&pts, &[], None, (640, 480), 2.5).unwrap();
+/// let s = select_groups(&pts, &[], (640, 480), 2.5).unwrap();
 /// assert_eq!((s.motions, s.labels), (0, vec![-1; 20]));
 /// ```
 pub fn select_groups(
     points: &Correspondences,
     groups: &[Vec<usize>],
-    held_out: Option<&[bool]>,
     image_size: (u32, u32),
     thr_px: f64,
 ) -> Result<Selection, SelectionError> {
-    if let Some(mask) = held_out.filter(|m| m.len() != points.len()) {
-        return Err(SelectionError::LengthMismatch {
-            labels: mask.len(),
-            points: points.len(),
-        });
-    }
     if let Some(&index) = groups.iter().flatten().find(|&&m| m >= points.len()) {
         return Err(SelectionError::BadIndex {
             index,
@@ -226,7 +214,7 @@ pub fn select_groups(
         max_iters: CLUSTER_REFIT_ITERS,
         ..IrlsParams::default()
     };
-    let labels = by_nfa(points, groups, held_out, image_size, thr_px, &irls);
+    let labels = by_nfa(points, groups, image_size, thr_px, &irls);
     let motions = labels.iter().map(|&l| l + 1).max().unwrap_or(0) as usize;
     Ok(Selection { labels, motions })
 }
@@ -241,12 +229,11 @@ pub fn select_groups(
 fn by_nfa(
     points: &Correspondences,
     groups: &[Vec<usize>],
-    held_out: Option<&[bool]>,
     image_size: (u32, u32),
     thr_px: f64,
     irls: &IrlsParams,
 ) -> Vec<i32> {
-    let detections = nfa::detect(points, groups, held_out, image_size, thr_px, irls);
+    let detections = nfa::detect(points, groups, image_size, thr_px, irls);
     let residuals: Vec<Vec<f64>> = detections
         .iter()
         .map(|d| sampson_residuals(points, &d.f))

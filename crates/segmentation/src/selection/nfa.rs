@@ -174,29 +174,20 @@ pub struct Detection {
 /// inlier threshold of the preferences, Eq. 38; AC-RANSAC's own threshold
 /// of the detected F, smaller, would leave its noise tail to support a
 /// copy of it). The group's F is refitted by IRLS-Tukey on its matches
-/// that count and are not held out ([`score_given`]). So a fragment of a detected motion keeps
+/// that count ([`score_given`]). So a fragment of a detected motion keeps
 /// no more than the few matches of its noise tail, and a mover beyond
 /// `thr_px` of the background's F keeps the matches there.
 ///
 /// The number of tests is `G · (N − 7)`: G groups of at least 8 matches,
 /// N − 7 thresholds each.
-///
-/// With `held_out` (a flag per match), each group's F is fitted on its
-/// matches that are not held out and tested on the held-out matches only
-/// (N their number): matches that played no part in making the
-/// hypotheses, the clusters or the fit, against which the F is a model
-/// chosen in advance, as the a-contrario test assumes. Without it every
-/// match is both fitted and tested.
 pub fn detect(
     points: &Correspondences,
     groups: &[Vec<usize>],
-    held_out: Option<&[bool]>,
     image_size: (u32, u32),
     thr_px: f64,
     irls: &IrlsParams,
 ) -> Vec<Detection> {
-    let roles = Roles(held_out);
-    let n = (0..points.len()).filter(|&m| roles.tested(m)).count();
+    let n = points.len();
     let mut remaining: Vec<usize> = (0..groups.len())
         .filter(|&i| groups[i].len() > FITTED_MATCHES)
         .collect();
@@ -204,19 +195,16 @@ pub fn detect(
         return Vec::new();
     }
     let ln_tests = (remaining.len() as f64).ln() + ((n - FITTED_MATCHES) as f64).ln();
-    let mut explained = Explained(vec![false; points.len()]);
+    let mut explained = Explained(vec![false; n]);
     let mut detections = Vec::new();
     loop {
         let best = remaining
             .iter()
             .enumerate()
             .filter_map(|(pos, &i)| {
-                let given = Given {
-                    explained: &explained,
-                    roles,
-                    ln_tests,
-                };
-                let scored = score_given(points, &groups[i], &given, image_size, thr_px, irls)?;
+                let scored = score_given(
+                    points, &groups[i], &explained, ln_tests, image_size, thr_px, irls,
+                )?;
                 Some((pos, i, scored))
             })
             .min_by(|a, b| a.2 .1.ln_nfa.total_cmp(&b.2 .1.ln_nfa).then(a.1.cmp(&b.1)));
@@ -271,29 +259,6 @@ fn polish_on_support(
     f
 }
 
-/// Which matches a group's F is fitted on and which it is tested on
-/// ([`detect`]'s `held_out`).
-#[derive(Clone, Copy)]
-struct Roles<'a>(Option<&'a [bool]>);
-
-impl Roles<'_> {
-    fn fitted(&self, m: usize) -> bool {
-        self.0.map_or(true, |h| !h[m])
-    }
-
-    fn tested(&self, m: usize) -> bool {
-        self.0.map_or(true, |h| h[m])
-    }
-}
-
-/// What a group is scored given: the matches explained so far, the roles
-/// of the matches and the log number of tests.
-struct Given<'a> {
-    explained: &'a Explained,
-    roles: Roles<'a>,
-    ln_tests: f64,
-}
-
 /// The matches the detections so far explain: within `thr_px` of a
 /// detected F.
 pub struct Explained(Vec<bool>);
@@ -312,30 +277,25 @@ impl Explained {
 fn score_given(
     points: &Correspondences,
     group: &[usize],
-    given: &Given,
+    explained: &Explained,
+    ln_tests: f64,
     image_size: (u32, u32),
     thr_px: f64,
     irls: &IrlsParams,
 ) -> Option<(Matrix3<f64>, Significance)> {
-    let counts = |m: usize| !given.explained.0[m];
-    let own: Vec<usize> = group
-        .iter()
-        .copied()
-        .filter(|&m| counts(m) && given.roles.fitted(m))
-        .collect();
+    let own: Vec<usize> = group.iter().copied().filter(|&m| !explained.0[m]).collect();
     if own.len() <= FITTED_MATCHES {
         return None;
     }
     let f = refit(points, &own, irls)?;
     let mut r: Vec<f64> = sampson_residuals(points, &f)
         .into_iter()
-        .enumerate()
-        .filter(|&(m, _)| counts(m) && given.roles.tested(m))
-        .map(|(_, r)| r)
+        .zip(&explained.0)
+        .filter(|(_, &e)| !e)
+        .map(|(r, _)| r)
         .collect();
     r.sort_by(f64::total_cmp);
-    let background = Background::new(&f, image_size);
-    let significance = significance(&r, given.ln_tests, &background, thr_px);
+    let significance = significance(&r, ln_tests, &Background::new(&f, image_size), thr_px);
     Some((f, significance))
 }
 
