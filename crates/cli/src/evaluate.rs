@@ -229,8 +229,19 @@ impl<K: PartialEq, T> StageCache<K, T> {
 }
 
 impl PipelineEvaluator {
-    /// Prepares the scenes (and the ground-truth fits FROB compares with).
+    /// Prepares the scenes (and the ground-truth fits FROB compares with),
+    /// and prints the library's warnings about each scene's input once
+    /// ([`segmentation::check_matches`]: points far outside the image, a
+    /// transposed image size); a scene it refuses fails when segmented,
+    /// with the same message.
     pub fn new(scenes: Vec<Scene>) -> Self {
+        for scene in &scenes {
+            if let Ok(warnings) = segmentation::check_matches(&crate::pipeline::matches(scene)) {
+                for warning in warnings {
+                    eprintln!("warning: scene {}: {warning}", scene.name);
+                }
+            }
+        }
         let gt_models = scenes.iter().map(ground_truth_models).collect();
         Self {
             scenes,

@@ -26,15 +26,6 @@ pub enum PipelineError {
         /// Why.
         cause: SegmentationError,
     },
-    /// A coordinate is not finite or absurdly far from the image
-    /// ([`check_coordinates`]).
-    #[error("scene `{scene}`: {cause}")]
-    Coordinates {
-        /// Scene name.
-        scene: String,
-        /// Which match and coordinate.
-        cause: CoordinateError,
-    },
     /// The focal file of `focal_solver = "external"` is unusable or was made
     /// for other hypotheses.
     #[error("scene `{scene}`: focal file: {cause}")]
@@ -52,109 +43,9 @@ impl PipelineError {
     pub fn reason(&self) -> String {
         match self {
             Self::Segmentation { cause, .. } => cause.to_string(),
-            Self::Coordinates { cause, .. } => cause.to_string(),
             Self::FocalFile { cause, .. } => format!("focal file: {cause}"),
         }
     }
-}
-
-/// How far from the image a coordinate may be, in image sides `max(W, H)`:
-/// a point 10⁴ sides outside the frame is 89.994° off the optical axis at
-/// the default focal prior `max(W, H)`, so it is no match of a real camera
-/// but a unit or parsing mistake (a coordinate of 1e200 once gave an empty
-/// segmentation without a word). Far below the magnitudes at which the
-/// normalisation of the minimal solvers loses the other points' precision.
-pub const MAX_COORDINATE_SIDES: f64 = 1e4;
-
-/// Matches outside the image by more than this many image sides are
-/// counted in a warning ([`check_coordinates`]): lens-undistorted points
-/// stray a little outside the frame, not a whole frame away.
-pub const FAR_OUTSIDE_SIDES: f64 = 1.0;
-
-/// A coordinate no real match has.
-#[derive(Debug, Clone, PartialEq, Error)]
-pub enum CoordinateError {
-    /// NaN or infinite.
-    #[error("match {index}: {name} = {value} is not a finite number")]
-    NonFinite {
-        /// 1-based match number (input order).
-        index: usize,
-        /// `x1`, `y1`, `x2` or `y2`.
-        name: &'static str,
-        /// The value.
-        value: f64,
-    },
-    /// Farther from the image than [`MAX_COORDINATE_SIDES`] image sides.
-    #[error(
-        "match {index}: {name} = {value:e} px is more than {MAX_COORDINATE_SIDES:e} image sides \
-         ({limit:e} px) outside the {width} x {height} image: not a pixel coordinate"
-    )]
-    Absurd {
-        /// 1-based match number (input order).
-        index: usize,
-        /// `x1`, `y1`, `x2` or `y2`.
-        name: &'static str,
-        /// The value.
-        value: f64,
-        /// The bound it exceeds, px.
-        limit: f64,
-        /// Image width, px.
-        width: u32,
-        /// Image height, px.
-        height: u32,
-    },
-}
-
-/// Checks the scene's coordinates: an error for a non-finite one or one
-/// more than [`MAX_COORDINATE_SIDES`] image sides outside the image; a
-/// one-line warning (the count and the first such match) when some lie
-/// more than [`FAR_OUTSIDE_SIDES`] sides outside it.
-pub fn check_coordinates(scene: &Scene) -> Result<Option<String>, CoordinateError> {
-    let (width, height) = scene.image_size;
-    let side = f64::from(width.max(height));
-    let limit = MAX_COORDINATE_SIDES * side;
-    let far = FAR_OUTSIDE_SIDES * side;
-    let outside = |v: f64, extent: u32| (-v).max(v - f64::from(extent)).max(0.0);
-    let mut far_count = 0;
-    let mut first_far = None;
-    for (i, (p1, p2)) in scene.points1.iter().zip(&scene.points2).enumerate() {
-        let coordinates = [
-            ("x1", p1[0], width),
-            ("y1", p1[1], height),
-            ("x2", p2[0], width),
-            ("y2", p2[1], height),
-        ];
-        let mut is_far = false;
-        for (name, value, extent) in coordinates {
-            let index = i + 1;
-            if !value.is_finite() {
-                return Err(CoordinateError::NonFinite { index, name, value });
-            }
-            let distance = outside(value, extent);
-            if distance > limit {
-                return Err(CoordinateError::Absurd {
-                    index,
-                    name,
-                    value,
-                    limit,
-                    width,
-                    height,
-                });
-            }
-            if distance > far && !is_far {
-                is_far = true;
-                first_far.get_or_insert(format!("match {index}: {name} = {value}"));
-            }
-        }
-        far_count += usize::from(is_far);
-    }
-    Ok(first_far.map(|example| {
-        format!(
-            "{far_count} of {} matches lie more than {FAR_OUTSIDE_SIDES} image side(s) outside the \
-             {width} x {height} image (e.g. {example}): check the image size and the column order",
-            scene.len()
-        )
-    }))
 }
 
 /// FNV-1a, 64 bit: a hash of the scene name that is the same on every
@@ -188,8 +79,8 @@ fn scene_error(scene: &Scene) -> impl Fn(SegmentationError) -> PipelineError + '
 
 /// Steps 1–3 of Algorithm 1 on a scene ([`segmentation::generate_hypotheses`]),
 /// after checking the whole config ([`PipelineConfig::validate`]), the
-/// coordinates ([`check_coordinates`]) and the memory bound
-/// ([`segmentation::check_memory`]).
+/// coordinates ([`segmentation::check_matches`]: one bound, the library's)
+/// and the memory bound ([`segmentation::check_memory`]).
 pub fn generate_hypotheses(
     scene: &Scene,
     config: &PipelineConfig,
@@ -197,10 +88,7 @@ pub fn generate_hypotheses(
     config
         .validate()
         .map_err(|e| scene_error(scene)(SegmentationError::InvalidParam(e)))?;
-    check_coordinates(scene).map_err(|cause| PipelineError::Coordinates {
-        scene: scene.name.clone(),
-        cause,
-    })?;
+    segmentation::check_matches(&matches(scene)).map_err(scene_error(scene))?;
     let params = config.scene_params(&scene.name);
     // Before sampling, as `segmentation::segment` does: a bound too small
     // for num_samples refuses the scene before any memory is taken.
@@ -321,32 +209,31 @@ mod tests {
     }
 
     #[test]
-    fn coordinates_are_bounded_by_the_image_size() {
-        // 1e4 sides of 100 px: 1e6 px outside the image is the bound.
-        let ok = scene_with(vec![[-999_999.0, 10.0], [50.0, 20.0]]);
-        let warning = check_coordinates(&ok).unwrap().unwrap();
-        assert!(warning.starts_with("1 of 2 matches"), "{warning}");
-        assert!(warning.contains("match 1: x1 = -999999"), "{warning}");
-        let inside = scene_with(vec![[-100.0, 149.0], [199.0, -50.0]]);
-        assert_eq!(check_coordinates(&inside).unwrap(), None);
-        let absurd = scene_with(vec![[50.0, 20.0], [50.0, 1_000_051.0]]);
-        assert!(matches!(
-            check_coordinates(&absurd),
-            Err(CoordinateError::Absurd {
-                index: 2,
-                name: "y1",
-                ..
-            })
-        ));
-        let nan = scene_with(vec![[50.0, f64::NAN]]);
-        assert!(matches!(
-            check_coordinates(&nan),
-            Err(CoordinateError::NonFinite {
-                index: 1,
-                name: "y1",
-                ..
-            })
-        ));
+    fn coordinates_are_checked_by_the_library_before_sampling() {
+        // The library's bound (segmentation::MAX_COORDINATE_PX), named with
+        // the scene, the row and the column.
+        let mut points = vec![[50.0, 20.0]; 20];
+        points[3] = [50.0, 1e7];
+        let err = generate_hypotheses(&scene_with(points), &PipelineConfig::default()).unwrap_err();
+        assert!(
+            matches!(
+                &err,
+                PipelineError::Segmentation {
+                    cause: SegmentationError::InvalidCoordinate {
+                        row: 3,
+                        column: "y1",
+                        ..
+                    },
+                    ..
+                }
+            ),
+            "{err}"
+        );
+        assert!(
+            err.to_string()
+                .starts_with("scene `s`: match row 3, column y1"),
+            "{err}"
+        );
     }
 
     #[test]

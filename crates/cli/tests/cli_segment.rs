@@ -498,6 +498,6 @@ fn input_warnings_go_to_stderr_one_line_each_and_absurd_values_fail() {
         .assert()
         .failure()
         .stderr(predicate::str::contains(
-            "pair.csv: match 3: x1 = 1e200 px is more than 1e4 image sides",
-        ));
+        "pair.csv: match row 2, column x1: coordinate 1e200 is not a finite number within ±1e6 px",
+    ));
 }

@@ -1,6 +1,7 @@
 //! Issue 40 for `sctl segment`: closed pipes, full disks and file-size
-//! limits; absurd coordinates and command-line values; the focal prior;
-//! JPEG backgrounds.
+//! limits; absurd coordinates and command-line values (one check, the
+//! library's, for `sctl segment` and `sctl run`); the focal prior; JPEG
+//! backgrounds.
 
 mod support;
 use support::sctl;
@@ -129,19 +130,57 @@ fn absurd_coordinates_are_refused_and_far_ones_warned_about() {
         .assert()
         .code(1)
         .stderr(predicate::str::contains(
-            "match 5: x1 = 1e200 px is more than 1e4 image sides (1.024e7 px) outside the 1024 x 768 image",
+            "absurd.csv: match row 4, column x1: coordinate 1e200 is not a finite number within ±1e6 px",
         ));
     let far = dir.path().join("far.csv");
     write_matches(&far, &[(4, "-5000,3,4,5"), (6, "4,5,4000,5")]);
-    segment(&far)
-        .assert()
-        .success()
-        .stderr(predicate::str::contains(
-            "warning: ",
-        ))
-        .stderr(predicate::str::contains(
-            "2 of 51 matches lie more than 1 image side(s) outside the 1024 x 768 image (e.g. match 5: x1 = -5000)",
-        ));
+    let output = segment(&far).output().unwrap();
+    assert!(output.status.success());
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    let warning = "far.csv: 2 of 51 matches lie more than one image size outside the 1024 x 768 \
+                   image (first: row 4, x1 = -5000";
+    assert!(
+        stderr.starts_with("warning: ") && stderr.contains(warning),
+        "{stderr}"
+    );
+    // One check, the library's: the warning is printed once.
+    assert_eq!(stderr.matches("lie more than").count(), 1, "{stderr}");
+}
+
+#[test]
+fn sctl_run_prints_the_same_input_warning_once_per_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    write_matches(&dir.path().join("far.csv"), &[(4, "-5000,3,4,5")]);
+    // Not far.toml: that name is far.csv's sidecar.
+    let config = dir.path().join("experiment.toml");
+    std::fs::write(
+        &config,
+        "name = \"far\"\n[dataset]\nkind = \"csv\"\nfiles = [\"far.csv\"]\nwidth = 1024\nheight = 768\n\
+         [pipeline]\nnum_samples = 100\n[sweep]\nseed = [1, 2]\n[plots]\nenabled = false\n",
+    )
+    .unwrap();
+    let output = sctl()
+        .arg("run")
+        .arg(&config)
+        .arg("--data-root")
+        .arg(dir.path())
+        .arg("--out")
+        .arg(dir.path().join("out"))
+        .arg("--quiet")
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert!(output.status.success(), "{stderr}");
+    // Two seeds, one scene: one warning, naming the scene.
+    assert_eq!(
+        stderr.matches("lie more than one image size").count(),
+        1,
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("warning: scene far: 1 of 51 matches"),
+        "{stderr}"
+    );
 }
 
 #[test]

@@ -9,7 +9,7 @@ use crate::config::PipelineConfig;
 use crate::dataset::load_match_file;
 use crate::evaluate::{ground_truth_models, scene_result};
 use crate::output::{write_atomic, SceneResult};
-use crate::pipeline::{check_coordinates, matches, Segmentation};
+use crate::pipeline::{matches, Segmentation};
 use crate::plots::{clusters_over_images, PlotFormat};
 use anyhow::{bail, Context, Result};
 use datasets::Scene;
@@ -163,9 +163,11 @@ pub fn run(args: Args) -> Result<()> {
         Some(f) => f,
         None => sidecar_focal_prior(&args.matches)?.unwrap_or_else(|| scene.focal_prior()),
     };
-    let coordinates =
-        check_coordinates(&scene).with_context(|| args.matches.display().to_string())?;
-    if let Some(warning) = coordinates {
+    // The library's input check, before any work: a refused coordinate is
+    // an error naming the file; its warnings are printed at once.
+    let input_warnings = segmentation::check_matches(&matches(&scene))
+        .map_err(|e| anyhow::anyhow!("{}: {e}", args.matches.display()))?;
+    for warning in &input_warnings {
         eprintln!("warning: {}: {warning}", args.matches.display());
     }
     let images = match (&args.image1, &args.image2) {
@@ -182,9 +184,7 @@ pub fn run(args: Args) -> Result<()> {
         })
         // The library's message names its cause already: not its chain too.
         .map_err(|e| anyhow::anyhow!("{}: {e}", args.matches.display()))?;
-    for warning in &segmentation.warnings {
-        eprintln!("warning: {}: {warning}", args.matches.display());
-    }
+    // segmentation.warnings repeats the input warnings printed above.
     let result = scene_result(&scene, &segmentation, &ground_truth_models(&scene))?;
 
     let mut summary = summary_text(
