@@ -294,7 +294,7 @@ fn cluster_kept(
         // The clusters, every match labelled, are the selection's groups.
         let groups = members(&labels, clusters);
         let thr = params.refinement.thr_px;
-        let selected = select_groups(&all_points, &groups, &step7.models, matches.image_size, thr)?;
+        let selected = select_groups(&all_points, &groups, matches.image_size, thr)?;
         (selected.labels, selected.motions)
     } else {
         (labels, clusters)

@@ -21,7 +21,6 @@ mod binomial;
 mod default_tests;
 pub mod gric;
 pub mod nfa;
-pub mod rescue;
 #[cfg(test)]
 mod tests;
 
@@ -128,17 +127,17 @@ pub fn select(
         ..IrlsParams::default()
     };
     let labels = match strategy {
-        Strategy::Nfa => by_nfa(points, &groups_of(labels), &[], image_size, thr_px, &irls),
+        Strategy::Nfa => by_nfa(points, &groups_of(labels), image_size, thr_px, &irls),
         Strategy::Gric => labels_of(
             &gric::merge_by_gric(points, &groups_of(labels), &irls),
             points.len(),
         ),
         Strategy::GricNfa => {
             let merged = gric::merge_by_gric(points, &groups_of(labels), &irls);
-            by_nfa(points, &merged, &[], image_size, thr_px, &irls)
+            by_nfa(points, &merged, image_size, thr_px, &irls)
         }
         Strategy::NfaGric => {
-            let detected = by_nfa(points, &groups_of(labels), &[], image_size, thr_px, &irls);
+            let detected = by_nfa(points, &groups_of(labels), image_size, thr_px, &irls);
             labels_of(
                 &gric::merge_by_gric(points, &groups_of(&detected), &irls),
                 points.len(),
@@ -188,24 +187,18 @@ fn check_scene(image_size: (u32, u32), thr_px: f64) -> Result<(), SelectionError
 /// nearest detected F within `thr_px`, or −1. The cost is linear in the
 /// number of matches for a given number of groups.
 ///
-/// `candidates` (the hypotheses; may be empty) then find the motions no
-/// group stands for among the matches left unexplained ([`rescue`]); a
-/// match they explain and its group's detected F does not takes the
-/// nearest F.
-///
 /// ```
 /// use geometry::Correspondences;
 /// use segmentation::selection::select_groups;
 /// // No group: no motion, every match an outlier.
 /// let p = [[0.0, 0.0]; 20];
 /// let pts = Correspondences::new(&p, &p).unwrap();
-/// let s = select_groups(&pts, &[], &[], (640, 480), 2.5).unwrap();
+/// let s = select_groups(&pts, &[], (640, 480), 2.5).unwrap();
 /// assert_eq!((s.motions, s.labels), (0, vec![-1; 20]));
 /// ```
 pub fn select_groups(
     points: &Correspondences,
     groups: &[Vec<usize>],
-    candidates: &[Matrix3<f64>],
     image_size: (u32, u32),
     thr_px: f64,
 ) -> Result<Selection, SelectionError> {
@@ -221,7 +214,7 @@ pub fn select_groups(
         max_iters: CLUSTER_REFIT_ITERS,
         ..IrlsParams::default()
     };
-    let labels = by_nfa(points, groups, candidates, image_size, thr_px, &irls);
+    let labels = by_nfa(points, groups, image_size, thr_px, &irls);
     let motions = labels.iter().map(|&l| l + 1).max().unwrap_or(0) as usize;
     Ok(Selection { labels, motions })
 }
@@ -236,23 +229,15 @@ pub fn select_groups(
 fn by_nfa(
     points: &Correspondences,
     groups: &[Vec<usize>],
-    candidates: &[Matrix3<f64>],
     image_size: (u32, u32),
     thr_px: f64,
     irls: &IrlsParams,
 ) -> Vec<i32> {
     let detections = nfa::detect(points, groups, image_size, thr_px, irls);
-    let detected: Vec<Matrix3<f64>> = detections.iter().map(|d| d.f).collect();
-    let rescued = rescue::rescue(points, candidates, &detected, image_size, thr_px, irls);
-    let residuals: Vec<Vec<f64>> = detected
+    let residuals: Vec<Vec<f64>> = detections
         .iter()
-        .chain(&rescued)
-        .map(|f| sampson_residuals(points, f))
+        .map(|d| sampson_residuals(points, &d.f))
         .collect();
-    // A match a rescued F explains and its own detection does not.
-    let rescued_from = |d: usize, m: usize| {
-        residuals[d][m] > thr_px && residuals[detected.len()..].iter().any(|r| r[m] <= thr_px)
-    };
     let nearest = |m: usize| {
         residuals
             .iter()
@@ -273,13 +258,9 @@ fn by_nfa(
         }
     }
     for (d, det) in detections.iter().enumerate() {
-        for &m in &groups[det.group] {
-            assigned[m] = if rescued_from(d, m) {
-                nearest(m)
-            } else {
-                d as i32
-            };
-        }
+        groups[det.group]
+            .iter()
+            .for_each(|&m| assigned[m] = d as i32);
     }
     renumber(&assigned)
 }

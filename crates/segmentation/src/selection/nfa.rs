@@ -121,20 +121,6 @@ pub fn significance(
     background: &Background,
     max_threshold_px: f64,
 ) -> Significance {
-    significance_counting(sorted, ln_tests, background, max_threshold_px, false)
-}
-
-/// [`significance`], with `sample_choice` also counting, at each support
-/// k, the `C(k, 7)` choices of the 7 matches that fitted F among the k
-/// (ORSA's count, Moisan & Stival 2004): for a model searched for among the
-/// tested matches themselves.
-pub fn significance_counting(
-    sorted: &[f64],
-    ln_tests: f64,
-    background: &Background,
-    max_threshold_px: f64,
-    sample_choice: bool,
-) -> Significance {
     let n = sorted.len();
     let within = sorted.partition_point(|&r| r <= max_threshold_px);
     if within <= FITTED_MATCHES {
@@ -146,12 +132,7 @@ pub fn significance_counting(
     loop {
         let eps = sorted[k - 1];
         let p = background.probability(eps);
-        let choice = if sample_choice {
-            statrs::function::factorial::ln_binomial(k as u64, s)
-        } else {
-            0.0
-        };
-        let ln_nfa = ln_tests + choice + ln_binomial_tail(n as u64 - s, k as u64 - s, p);
+        let ln_nfa = ln_tests + ln_binomial_tail(n as u64 - s, k as u64 - s, p);
         if ln_nfa < best.ln_nfa {
             best = Significance {
                 ln_nfa,
@@ -256,7 +237,7 @@ const POLISH_ROUNDS: usize = 2;
 /// the whole motion, whose remainder would otherwise be detected again.
 /// The significance is that of the F before; the polish changes what the
 /// detection explains and how it labels. Keeps `f` when a refit fails.
-pub(super) fn polish_on_support(
+fn polish_on_support(
     points: &Correspondences,
     mut f: Matrix3<f64>,
     explained: &Explained,
@@ -283,17 +264,7 @@ pub(super) fn polish_on_support(
 pub struct Explained(Vec<bool>);
 
 impl Explained {
-    /// Nothing explained yet, of `n` matches.
-    pub(super) fn none(n: usize) -> Self {
-        Self(vec![false; n])
-    }
-
-    /// Whether match `m` is explained.
-    pub(super) fn contains(&self, m: usize) -> bool {
-        self.0[m]
-    }
-
-    pub(super) fn add(&mut self, residuals: &[f64], thr_px: f64) {
+    fn add(&mut self, residuals: &[f64], thr_px: f64) {
         for (e, &r) in self.0.iter_mut().zip(residuals) {
             *e |= r <= thr_px;
         }
