@@ -225,36 +225,33 @@ fn main() -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
-    let params = o.preset.params();
+    let scenes = match sctl::dataset::preset_scenes(o.preset, o.from, o.to) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("cluster_anatomy: {e:#}");
+            return ExitCode::FAILURE;
+        }
+    };
     let mut anatomy = Anatomy::default();
-    for category in o.preset.categories() {
-        for index in o.from..=o.to {
-            let scene = match params.generate_scene(1, category, index) {
-                Ok(s) => s.scene,
-                Err(e) => {
-                    eprintln!("cluster_anatomy: {category}/{index}: {e}");
-                    return ExitCode::FAILURE;
-                }
-            };
-            anatomy.add_true_models(&scene, o.params.refinement.thr_px);
-            for &seed in &o.seeds {
-                let p = o
-                    .params
-                    .clone()
-                    .with(|q| q.sampling.seed = scene_seed(seed, &scene.name));
-                let mut clustered = vec![false; scene.len()];
-                for i in subset_indices(p.sampling.seed, scene.len(), p.sampling.cluster_subset) {
-                    clustered[i] = true;
-                }
-                match segment(&matches(&scene), &p) {
-                    Ok(seg) => anatomy.add(
-                        &scene_labels(&scene),
-                        &seg.labels,
-                        scene.num_motions(),
-                        &clustered,
-                    ),
-                    Err(e) => eprintln!("cluster_anatomy: {}: {e}", scene.name),
-                }
+    for scene in &scenes {
+        anatomy.add_true_models(scene, o.params.refinement.thr_px);
+        for &seed in &o.seeds {
+            let p = o
+                .params
+                .clone()
+                .with(|q| q.sampling.seed = scene_seed(seed, &scene.name));
+            let mut clustered = vec![false; scene.len()];
+            for i in subset_indices(p.sampling.seed, scene.len(), p.sampling.cluster_subset) {
+                clustered[i] = true;
+            }
+            match segment(&matches(scene), &p) {
+                Ok(seg) => anatomy.add(
+                    &scene_labels(scene),
+                    &seg.labels,
+                    scene.num_motions(),
+                    &clustered,
+                ),
+                Err(e) => eprintln!("cluster_anatomy: {}: {e}", scene.name),
             }
         }
     }

@@ -189,28 +189,25 @@ fn main() -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
-    let generator = o.preset.params();
+    let scenes = match sctl::dataset::preset_scenes(o.preset, o.from, o.to) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("selection_eval: {e:#}");
+            return ExitCode::FAILURE;
+        }
+    };
     let mut rows = Vec::new();
-    for category in o.preset.categories() {
-        for index in o.from..=o.to {
-            let scene = match generator.generate_scene(1, category, index) {
-                Ok(s) => s.scene,
+    for scene in &scenes {
+        for &seed in &o.seeds {
+            match run_scene(scene, &o.params, seed) {
+                Ok(r) => rows.extend(r),
                 Err(e) => {
-                    eprintln!("selection_eval: {category}/{index}: {e}");
+                    eprintln!("selection_eval: {e}");
                     return ExitCode::FAILURE;
                 }
-            };
-            for &seed in &o.seeds {
-                match run_scene(&scene, &o.params, seed) {
-                    Ok(r) => rows.extend(r),
-                    Err(e) => {
-                        eprintln!("selection_eval: {e}");
-                        return ExitCode::FAILURE;
-                    }
-                }
             }
-            eprintln!("selection_eval: {} done", scene.name);
         }
+        eprintln!("selection_eval: {} done", scene.name);
     }
     summary(&rows);
     if let Some(path) = &o.out {

@@ -104,6 +104,27 @@ pub fn load_scenes(
     Ok(scenes)
 }
 
+/// The scenes of the synthetic `preset`, every category, indices
+/// `first..=last`, generator seed 1: those `sctl run` runs with
+/// `kind = "synthetic"`, that preset and `index_range = [first, last]` (the
+/// lab examples' validation scenes, so that their figures and a run's
+/// agree).
+pub fn preset_scenes(preset: Preset, first: u32, last: u32) -> Result<Vec<Scene>> {
+    synthetic_scenes(&DatasetConfig {
+        kind: DatasetKind::Synthetic,
+        data_root: None,
+        scenes: None,
+        split: None,
+        categories: None,
+        index_range: Some([first, last]),
+        preset: Some(preset.name().to_string()),
+        generator_seed: None,
+        files: None,
+        width: None,
+        height: None,
+    })
+}
+
 /// Refuses an `index_range` reaching past the AdelaideRMF scenes (indices
 /// `0..count`): clamping it would run fewer scenes than asked without a word.
 fn check_adelaidermf_range(range: Option<[u32; 2]>, count: usize) -> Result<()> {
