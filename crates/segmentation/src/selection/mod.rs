@@ -109,6 +109,25 @@ pub struct Selection {
     pub motions: usize,
 }
 
+impl Selection {
+    /// `labels` (motions numbered 0, 1, …, −1 outliers) with their number
+    /// of motions.
+    fn of(labels: Vec<i32>) -> Self {
+        let motions = labels.iter().map(|&l| l + 1).max().unwrap_or(0) as usize;
+        Self { labels, motions }
+    }
+}
+
+/// The IRLS-Tukey parameters of every cluster refit of the selection:
+/// [`CLUSTER_REFIT_ITERS`] iterations, `thr_px` the inlier bound.
+fn refit_params(thr_px: f64) -> IrlsParams {
+    IrlsParams {
+        thr_px,
+        max_iters: CLUSTER_REFIT_ITERS,
+        ..IrlsParams::default()
+    }
+}
+
 /// Motions and outliers from the clustering's `labels` (−1 outliers) of
 /// the principal-point-centred `points` by `strategy`; `image_size` is
 /// (W, H) in px and `thr_px` the inlier threshold (the NFA's largest
@@ -121,11 +140,7 @@ pub fn select(
     strategy: Strategy,
 ) -> Result<Selection, SelectionError> {
     check(points, labels, image_size, thr_px)?;
-    let irls = IrlsParams {
-        thr_px,
-        max_iters: CLUSTER_REFIT_ITERS,
-        ..IrlsParams::default()
-    };
+    let irls = refit_params(thr_px);
     let labels = match strategy {
         Strategy::Nfa => by_nfa(points, &groups_of(labels), image_size, thr_px, &irls),
         Strategy::Gric => labels_of(
@@ -144,8 +159,7 @@ pub fn select(
             )
         }
     };
-    let motions = labels.iter().map(|&l| l + 1).max().unwrap_or(0) as usize;
-    Ok(Selection { labels, motions })
+    Ok(Selection::of(labels))
 }
 
 fn check(
@@ -209,14 +223,9 @@ pub fn select_groups(
         });
     }
     check_scene(image_size, thr_px)?;
-    let irls = IrlsParams {
-        thr_px,
-        max_iters: CLUSTER_REFIT_ITERS,
-        ..IrlsParams::default()
-    };
+    let irls = refit_params(thr_px);
     let labels = by_nfa(points, groups, image_size, thr_px, &irls);
-    let motions = labels.iter().map(|&l| l + 1).max().unwrap_or(0) as usize;
-    Ok(Selection { labels, motions })
+    Ok(Selection::of(labels))
 }
 
 /// Labels after [`nfa::detect`]: the detected groups' matches keep their
