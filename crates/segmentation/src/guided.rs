@@ -90,37 +90,36 @@ impl CoInliers {
     /// The co-inlier counts `K(i, j) = |{h : i and j in h}|` of every pair
     /// over the hypotheses added so far (`K(i, i) = 0`). Only the
     /// hypotheses added since the last call are counted: each call costs
-    /// N²/2 times the words they span.
+    /// N² times the words they span.
     pub fn kernel(&mut self) -> &CoInlierKernel {
         let (n, w) = (self.kernel.n, self.words);
         let (from, to) = (self.counted, self.hypotheses);
-        if from < to {
-            // Masks of the new hypotheses' bits in each word they span.
-            let masks: Vec<(usize, u64)> = (from / 64..to.div_ceil(64))
-                .map(|word| {
-                    let lo = from.max(64 * word) - 64 * word;
-                    let hi = to.min(64 * (word + 1)) - 64 * word;
-                    let high = if hi == 64 { u64::MAX } else { (1u64 << hi) - 1 };
-                    (word, high & !((1u64 << lo) - 1))
-                })
-                .collect();
-            let counts = &mut self.kernel.counts;
-            for i in 0..n {
-                let bi = &self.bits[i * w..(i + 1) * w];
-                for j in i + 1..n {
-                    let bj = &self.bits[j * w..(j + 1) * w];
-                    let c: u32 = masks
-                        .iter()
-                        .map(|&(k, m)| (bi[k] & bj[k] & m).count_ones())
-                        .sum();
-                    if c > 0 {
-                        counts[i * n + j] += f64::from(c);
-                        counts[j * n + i] += f64::from(c);
-                    }
-                }
+        // One word at a time, its new hypotheses' bits gathered into one
+        // column: each match's row adds the shared bits of every match
+        // (contiguous, so it vectorises), and a match none of the new
+        // hypotheses holds adds nothing. The counts are integers, exact
+        // in f64 in any order.
+        let mut column = vec![0u64; n];
+        for word in from / 64..to.div_ceil(64) {
+            let lo = from.max(64 * word) - 64 * word;
+            let hi = to.min(64 * (word + 1)) - 64 * word;
+            let high = if hi == 64 { u64::MAX } else { (1u64 << hi) - 1 };
+            let mask = high & !((1u64 << lo) - 1);
+            for (c, row) in column.iter_mut().zip(self.bits.chunks_exact(w)) {
+                *c = row[word] & mask;
             }
-            self.counted = to;
+            for (i, counts) in self.kernel.counts.chunks_exact_mut(n).enumerate() {
+                let bi = column[i];
+                if bi == 0 {
+                    continue;
+                }
+                for (k, &bj) in counts.iter_mut().zip(&column) {
+                    *k += f64::from((bi & bj).count_ones());
+                }
+                counts[i] = 0.0;
+            }
         }
+        self.counted = to;
         &self.kernel
     }
 }

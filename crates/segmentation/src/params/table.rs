@@ -7,6 +7,8 @@
 
 #[cfg(feature = "serde")]
 use super::stages::*;
+// Without serde only the doc links below name it.
+#[cfg_attr(not(feature = "serde"), allow(unused_imports))]
 use super::Params;
 
 /// The stage of Algorithm 1 a key belongs to: the field of [`Params`]

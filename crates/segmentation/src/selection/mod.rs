@@ -243,10 +243,7 @@ fn by_nfa(
     irls: &IrlsParams,
 ) -> Vec<i32> {
     let detections = nfa::detect(points, groups, image_size, thr_px, irls);
-    let residuals: Vec<Vec<f64>> = detections
-        .iter()
-        .map(|d| sampson_residuals(points, &d.f))
-        .collect();
+    let residuals: Vec<&Vec<f64>> = detections.iter().map(|d| &d.residuals).collect();
     let nearest = |m: usize| {
         residuals
             .iter()
@@ -257,9 +254,9 @@ fn by_nfa(
     };
     let mut assigned: Vec<i32> = (0..points.len()).map(nearest).collect();
     for g in groups {
-        let explained = |r: &Vec<f64>| g.iter().filter(|&&m| r[m] <= thr_px).count();
+        let explained = |r: &[f64]| g.iter().filter(|&&m| r[m] <= thr_px).count();
         let joined =
-            (0..residuals.len()).max_by_key(|&d| (explained(&residuals[d]), std::cmp::Reverse(d)));
+            (0..residuals.len()).max_by_key(|&d| (explained(residuals[d]), std::cmp::Reverse(d)));
         if let Some(d) = joined {
             g.iter()
                 .filter(|&&m| residuals[d][m] <= thr_px)

@@ -161,6 +161,8 @@ pub struct Detection {
     pub f: Matrix3<f64>,
     /// Its score given the detections before it.
     pub significance: Significance,
+    /// The Sampson distances (px) of every match to `f`.
+    pub residuals: Vec<f64>,
 }
 
 /// The groups (lists of match indices) that are motions, greedily, the
@@ -174,7 +176,7 @@ pub struct Detection {
 /// inlier threshold of the preferences, Eq. 38; AC-RANSAC's own threshold
 /// of the detected F, smaller, would leave its noise tail to support a
 /// copy of it). The group's F is refitted by IRLS-Tukey on its matches
-/// that count ([`score_given`]). So a fragment of a detected motion keeps
+/// that count ([`fit_given`], reused while none of them becomes explained). So a fragment of a detected motion keeps
 /// no more than the few matches of its noise tail, and a mover beyond
 /// `thr_px` of the background's F keeps the matches there.
 ///
@@ -196,31 +198,41 @@ pub fn detect(
     }
     let ln_tests = (remaining.len() as f64).ln() + ((n - FITTED_MATCHES) as f64).ln();
     let mut explained = Explained(vec![false; n]);
+    let mut fits: Vec<Option<GroupFit>> = groups.iter().map(|_| None).collect();
     let mut detections = Vec::new();
     loop {
         let best = remaining
             .iter()
             .enumerate()
             .filter_map(|(pos, &i)| {
-                let scored = score_given(
-                    points, &groups[i], &explained, ln_tests, image_size, thr_px, irls,
+                let fit = fit_given(
+                    points,
+                    &groups[i],
+                    &explained,
+                    irls,
+                    image_size,
+                    &mut fits[i],
                 )?;
-                Some((pos, i, scored))
+                let significance = fit.significance(&explained, ln_tests, thr_px);
+                Some((pos, i, significance))
             })
-            .min_by(|a, b| a.2 .1.ln_nfa.total_cmp(&b.2 .1.ln_nfa).then(a.1.cmp(&b.1)));
-        let Some((pos, group, (f, significance))) = best else {
+            .min_by(|a, b| a.2.ln_nfa.total_cmp(&b.2.ln_nfa).then(a.1.cmp(&b.1)));
+        let Some((pos, group, significance)) = best else {
             break;
         };
         if !significance.is_significant() {
             break;
         }
         remaining.swap_remove(pos);
-        let f = polish_on_support(points, f, &explained, thr_px, irls);
-        explained.add(&sampson_residuals(points, &f), thr_px);
+        let fit = fits[group].take().expect("a scored group has its fit");
+        let (f, residuals) =
+            polish_on_support(points, fit.f, fit.residuals, &explained, thr_px, irls);
+        explained.add(&residuals, thr_px);
         detections.push(Detection {
             group,
             f,
             significance,
+            residuals,
         });
     }
     detections
@@ -240,23 +252,27 @@ const POLISH_ROUNDS: usize = 2;
 fn polish_on_support(
     points: &Correspondences,
     mut f: Matrix3<f64>,
+    mut residuals: Vec<f64>,
     explained: &Explained,
     thr_px: f64,
     irls: &IrlsParams,
-) -> Matrix3<f64> {
+) -> (Matrix3<f64>, Vec<f64>) {
     for _ in 0..POLISH_ROUNDS {
-        let support: Vec<usize> = sampson_residuals(points, &f)
+        let support: Vec<usize> = residuals
             .iter()
             .enumerate()
             .filter(|&(m, &r)| r <= thr_px && !explained.0[m])
             .map(|(m, _)| m)
             .collect();
         match refit(points, &support, irls) {
-            Some(refitted) => f = refitted,
+            Some(refitted) => {
+                f = refitted;
+                residuals = sampson_residuals(points, &f);
+            }
             None => break,
         }
     }
-    f
+    (f, residuals)
 }
 
 /// The matches the detections so far explain: within `thr_px` of a
@@ -271,32 +287,61 @@ impl Explained {
     }
 }
 
-/// A group's F (refitted on its matches that count) and its significance
-/// given `explained`; None when fewer than 8 of its matches count or the
-/// fit fails.
-fn score_given(
+/// A group's F refitted on its matches that count, with what scoring it
+/// needs: it changes only when one of those matches becomes explained, so
+/// a round reuses the last round's fit of a group none of whose matches
+/// the last detection explained.
+struct GroupFit {
+    /// How many of the group's matches counted when it was fitted.
+    own: usize,
+    f: Matrix3<f64>,
+    /// Sampson distances (px) of every match to `f`.
+    residuals: Vec<f64>,
+    background: Background,
+}
+
+impl GroupFit {
+    /// The significance of `f` over the matches that count.
+    fn significance(&self, explained: &Explained, ln_tests: f64, thr_px: f64) -> Significance {
+        let mut r: Vec<f64> = self
+            .residuals
+            .iter()
+            .zip(&explained.0)
+            .filter(|(_, &e)| !e)
+            .map(|(&r, _)| r)
+            .collect();
+        r.sort_by(f64::total_cmp);
+        significance(&r, ln_tests, &self.background, thr_px)
+    }
+}
+
+/// The fit of `group` given `explained`, from `cache` when none of its
+/// matches became explained since; None when fewer than 8 of its matches
+/// count or the fit fails.
+fn fit_given<'a>(
     points: &Correspondences,
     group: &[usize],
     explained: &Explained,
-    ln_tests: f64,
-    image_size: (u32, u32),
-    thr_px: f64,
     irls: &IrlsParams,
-) -> Option<(Matrix3<f64>, Significance)> {
-    let own: Vec<usize> = group.iter().copied().filter(|&m| !explained.0[m]).collect();
-    if own.len() <= FITTED_MATCHES {
+    image_size: (u32, u32),
+    cache: &'a mut Option<GroupFit>,
+) -> Option<&'a GroupFit> {
+    let counts = |m: &usize| !explained.0[*m];
+    let own_len = group.iter().filter(|m| counts(m)).count();
+    if own_len <= FITTED_MATCHES {
+        *cache = None;
         return None;
     }
-    let f = refit(points, &own, irls)?;
-    let mut r: Vec<f64> = sampson_residuals(points, &f)
-        .into_iter()
-        .zip(&explained.0)
-        .filter(|(_, &e)| !e)
-        .map(|(r, _)| r)
-        .collect();
-    r.sort_by(f64::total_cmp);
-    let significance = significance(&r, ln_tests, &Background::new(&f, image_size), thr_px);
-    Some((f, significance))
+    if cache.as_ref().map(|c| c.own) != Some(own_len) {
+        let own: Vec<usize> = group.iter().copied().filter(|m| counts(m)).collect();
+        *cache = refit(points, &own, irls).map(|f| GroupFit {
+            own: own_len,
+            f,
+            residuals: sampson_residuals(points, &f),
+            background: Background::new(&f, image_size),
+        });
+    }
+    cache.as_ref()
 }
 
 #[cfg(test)]
