@@ -6,6 +6,9 @@
 //! (ground-truth inliers mislabelled) into inliers called outliers, inliers
 //! in a fragment and inliers in another motion's cluster. Scenes and
 //! sampling seeds are those of `sctl run` on the same preset and indices.
+//! Per scene, once: the motion count the a-contrario selection finds when
+//! given the true groups (the ceiling of any clustering before it), and
+//! how many true Fs are not significant even alone.
 //! `--config` takes the parameters of a file's `[pipeline]` table (its
 //! `profile` and the keys it gives), `--profile` those of a profile.
 //!
@@ -18,8 +21,10 @@
 use datasets::synthetic::Preset;
 use datasets::Scene;
 use geometry::{sampson_distances_squared, Correspondences};
+use nalgebra::Matrix3;
 use sctl::config::PipelineConfig;
 use sctl::pipeline::{matches, scene_seed};
+use segmentation::selection::{nfa, select_groups};
 use segmentation::{segment, subset_indices, Params, Profile};
 use std::process::ExitCode;
 
@@ -94,6 +99,14 @@ struct Anatomy {
     /// Ground-truth inliers of the scenes (once per scene, not per seed):
     /// the denominator of the two counts above.
     scene_inliers: usize,
+    /// Scenes, and those whose true motion count the selection finds when
+    /// given the true groups (each motion's matches) instead of clusters.
+    scenes: usize,
+    true_groups_exact: usize,
+    /// True motions, and those whose true F is not significant (NFA ≥ 1)
+    /// alone among the scene's matches: no clustering makes them found.
+    true_motions: usize,
+    true_f_not_significant: usize,
 }
 
 impl Anatomy {
@@ -181,6 +194,48 @@ impl Anatomy {
         }
     }
 
+    /// The selection given the true groups, and the significance of each
+    /// true F alone (its scene's tests: motions × (N − 7)), once per scene.
+    fn add_true_groups(&mut self, scene: &Scene, thr_px: f64) {
+        let m = matches(scene);
+        let pp = m.principal_point;
+        let (Some(truth), Ok(points)) = (
+            &scene.labels,
+            Correspondences::new(&scene.points1, &scene.points2),
+        ) else {
+            return;
+        };
+        let points = points.shifted(pp, pp);
+        let k = scene.num_motions();
+        let groups: Vec<Vec<usize>> = (1..=k as i32)
+            .map(|t| (0..truth.len()).filter(|&i| truth[i] == t).collect())
+            .collect();
+        let Ok(selected) = select_groups(&points, &groups, m.image_size, thr_px) else {
+            return;
+        };
+        self.scenes += 1;
+        self.true_groups_exact += usize::from(selected.motions == k);
+        // The true F in principal-point-centred coordinates: Tᵀ F T, T the
+        // shift back to pixels.
+        let t = Matrix3::new(1.0, 0.0, pp[0], 0.0, 1.0, pp[1], 0.0, 0.0, 1.0);
+        let ln_tests = (k as f64 * (points.len() as f64 - 7.0)).ln();
+        for f in &scene.gt_fundamentals {
+            let f = t.transpose() * f * t;
+            let mut r = vec![0.0; points.len()];
+            sampson_distances_squared(&f, &points, &mut r);
+            let mut r: Vec<f64> = r.iter().map(|v| v.sqrt()).collect();
+            r.sort_by(f64::total_cmp);
+            let s = nfa::significance(
+                &r,
+                ln_tests,
+                &nfa::Background::new(&f, m.image_size),
+                thr_px,
+            );
+            self.true_motions += 1;
+            self.true_f_not_significant += usize::from(!s.is_significant());
+        }
+    }
+
     fn print(&self) {
         let pct = |x: usize| 100.0 * x as f64 / self.gt_inliers.max(1) as f64;
         let of_scenes = |x: usize| 100.0 * x as f64 / self.scene_inliers.max(1) as f64;
@@ -204,6 +259,10 @@ impl Anatomy {
             "ground-truth inliers beyond thr_px of their motion's true F: {:.2} %; within thr_px of another motion's: {:.2} %",
             of_scenes(self.inliers_beyond_thr),
             of_scenes(self.inliers_ambiguous)
+        );
+        println!(
+            "given the true groups, the selection finds the true count on {} of {} scenes; {} of {} true Fs are not significant alone",
+            self.true_groups_exact, self.scenes, self.true_f_not_significant, self.true_motions
         );
         println!(
             "ground-truth outliers {}: {:.2} % in a cluster",
@@ -235,6 +294,7 @@ fn main() -> ExitCode {
     let mut anatomy = Anatomy::default();
     for scene in &scenes {
         anatomy.add_true_models(scene, o.params.refinement.thr_px);
+        anatomy.add_true_groups(scene, o.params.refinement.thr_px);
         for &seed in &o.seeds {
             let p = o
                 .params
