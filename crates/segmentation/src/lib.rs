@@ -90,5 +90,5 @@ pub use sampling::{
 pub use segment::{
     check_memory, fit_cluster, segment, segment_cancellable, segment_with, segment_with_cancellable,
 };
-pub use selection::{select, Selection, SelectionError, Strategy};
+pub use selection::{select, Selection, SelectionError};
 pub use subset::{extend_labels, subset_indices, ClusteredSubset};

@@ -1,25 +1,21 @@
 //! Model selection after the clustering: which of T-Linkage's clusters are
 //! motions, by a principle instead of size rules (`min_cluster_size`, a
-//! share of N, the merge's share of a cluster explained):
-//!
-//! * [`Strategy::Nfa`]: a cluster is a motion when the number of false
-//!   alarms of its F is below 1, given the motions detected before it
-//!   ([`nfa::detect`]: Moisan & Stival 2004, AC-RANSAC 2012, MAC-RANSAC
-//!   2010);
-//! * [`Strategy::Gric`]: two clusters are one motion when one F for both
-//!   has the smaller GRIC (Torr 1998, [`gric::merge_by_gric`]);
-//! * [`Strategy::GricNfa`] and [`Strategy::NfaGric`]: one after the other.
+//! share of N, the merge's share of a cluster explained): a cluster is a
+//! motion when the number of false alarms of its F is below 1, given the
+//! motions detected before it ([`nfa::detect`]: Moisan & Stival 2004,
+//! AC-RANSAC 2012, MAC-RANSAC 2010). GRIC merges (Torr 1998), alone or
+//! with the NFA, were measured and not adopted (results/README.md, "Tried
+//! and not adopted").
 //!
 //! Matches of no motion are outliers. Pure functions of the matches
 //! (principal-point-centred, as [`crate::segment`] uses them), the
-//! clustering's labels, the image size and `thr_px`; every cluster's F is
-//! refitted here by IRLS-Tukey (docs/method.md, Algorithm 1 step 3;
-//! [`CLUSTER_REFIT_ITERS`] iterations) on its matches alone.
+//! clustering's labels or groups, the image size and `thr_px`; every
+//! cluster's F is refitted here by IRLS-Tukey (docs/method.md, Algorithm 1
+//! step 3; [`CLUSTER_REFIT_ITERS`] iterations) on its matches alone.
 
 mod binomial;
 #[cfg(test)]
 mod default_tests;
-pub mod gric;
 pub mod nfa;
 #[cfg(test)]
 mod tests;
@@ -33,37 +29,6 @@ use thiserror::Error;
 /// IRLS-Tukey iterations of each cluster's refit: the thesis's
 /// `irls_iters` (Table 1), whatever the profile's.
 pub const CLUSTER_REFIT_ITERS: usize = 5;
-
-/// How clusters become motions.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Strategy {
-    /// A-contrario detection ([`nfa::detect`]); a cluster not detected
-    /// joins the detected F that explains most of its matches within
-    /// `thr_px`; matches no detected F explains are outliers.
-    Nfa,
-    /// GRIC merges ([`gric::merge_by_gric`]) of the clusters of at least 8
-    /// matches; smaller clusters are outliers.
-    Gric,
-    /// GRIC merges, then a-contrario detection of the merged clusters.
-    GricNfa,
-    /// A-contrario detection, then GRIC merges of the motions.
-    NfaGric,
-}
-
-impl Strategy {
-    /// Every strategy.
-    pub const ALL: [Strategy; 4] = [Self::Nfa, Self::Gric, Self::GricNfa, Self::NfaGric];
-
-    /// `nfa`, `gric`, `gric+nfa`, `nfa+gric`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Nfa => "nfa",
-            Self::Gric => "gric",
-            Self::GricNfa => "gric+nfa",
-            Self::NfaGric => "nfa+gric",
-        }
-    }
-}
 
 /// Input that cannot be selected from.
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -129,36 +94,18 @@ fn refit_params(thr_px: f64) -> IrlsParams {
 }
 
 /// Motions and outliers from the clustering's `labels` (−1 outliers) of
-/// the principal-point-centred `points` by `strategy`; `image_size` is
-/// (W, H) in px and `thr_px` the inlier threshold (the NFA's largest
-/// threshold and the refits' inlier bound).
+/// the principal-point-centred `points`: [`select_groups`] of the labels'
+/// clusters; `image_size` is (W, H) in px and `thr_px` the inlier threshold
+/// (the NFA's largest threshold and the refits' inlier bound).
 pub fn select(
     points: &Correspondences,
     labels: &[i32],
     image_size: (u32, u32),
     thr_px: f64,
-    strategy: Strategy,
 ) -> Result<Selection, SelectionError> {
     check(points, labels, image_size, thr_px)?;
     let irls = refit_params(thr_px);
-    let labels = match strategy {
-        Strategy::Nfa => by_nfa(points, &groups_of(labels), image_size, thr_px, &irls),
-        Strategy::Gric => labels_of(
-            &gric::merge_by_gric(points, &groups_of(labels), &irls),
-            points.len(),
-        ),
-        Strategy::GricNfa => {
-            let merged = gric::merge_by_gric(points, &groups_of(labels), &irls);
-            by_nfa(points, &merged, image_size, thr_px, &irls)
-        }
-        Strategy::NfaGric => {
-            let detected = by_nfa(points, &groups_of(labels), image_size, thr_px, &irls);
-            labels_of(
-                &gric::merge_by_gric(points, &groups_of(&detected), &irls),
-                points.len(),
-            )
-        }
-    };
+    let labels = by_nfa(points, &groups_of(labels), image_size, thr_px, &irls);
     Ok(Selection::of(labels))
 }
 
@@ -193,7 +140,7 @@ fn check_scene(image_size: (u32, u32), thr_px: f64) -> Result<(), SelectionError
 /// The motions among `groups` (lists of indices into the
 /// principal-point-centred `points`, e.g. T-Linkage's clusters, or those of
 /// a subset of the matches) by a-contrario detection over every match
-/// ([`nfa::detect`]), labelled as [`Strategy::Nfa`] labels them: a match
+/// ([`nfa::detect`]), labelled so: a match
 /// of a detected group takes its motion; a group not detected joins, as a
 /// whole, the detected F that explains most of its matches within
 /// `thr_px` (those it explains take its label, the others the nearest
@@ -282,15 +229,6 @@ fn groups_of(labels: &[i32]) -> Vec<Vec<usize>> {
     }
     groups.retain(|g| !g.is_empty());
     groups
-}
-
-/// Labels of `n` matches from groups (the rest −1), renumbered.
-fn labels_of(groups: &[Vec<usize>], n: usize) -> Vec<i32> {
-    let mut labels = vec![-1; n];
-    for (l, g) in groups.iter().enumerate() {
-        g.iter().for_each(|&m| labels[m] = l as i32);
-    }
-    renumber(&labels)
 }
 
 /// Labels ≥ 0 renumbered 0, 1, … by first appearance.

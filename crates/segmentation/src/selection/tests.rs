@@ -198,10 +198,8 @@ fn two_clusters_of_one_motion_in_different_regions_are_one() {
             }
         })
         .collect();
-    for strategy in Strategy::ALL {
-        let sel = select(&s.points(), &labels, SIZE, THR_PX, strategy).unwrap();
-        assert_eq!(sel.motions, 1, "{}", strategy.name());
-    }
+    let sel = select(&s.points(), &labels, SIZE, THR_PX).unwrap();
+    assert_eq!(sel.motions, 1);
 }
 
 #[test]
@@ -216,10 +214,8 @@ fn two_motions_with_different_fs_in_different_regions_stay_two() {
         (20.0, 300.0),
     );
     let labels = clustering(&s.truth, 1, 0);
-    for strategy in Strategy::ALL {
-        let sel = select(&s.points(), &labels, SIZE, THR_PX, strategy).unwrap();
-        assert_eq!(sel.motions, 2, "{}", strategy.name());
-    }
+    let sel = select(&s.points(), &labels, SIZE, THR_PX).unwrap();
+    assert_eq!(sel.motions, 2);
 }
 
 /// A mover of 2 % of N at 3 px from the background, 10 % outliers.
@@ -247,12 +243,12 @@ fn a_mover_of_two_percent_at_three_px_survives_the_nfa() {
     for n in [2000, 20_000] {
         let s = small_mover(n, 3);
         let labels = clustering(&s.truth, 1, 0);
-        let sel = select(&s.points(), &labels, SIZE, THR_PX, Strategy::Nfa).unwrap();
+        let sel = select(&s.points(), &labels, SIZE, THR_PX).unwrap();
         assert_eq!(sel.motions, 2, "N {n}");
         assert!(kept_together(&s.truth, &sel.labels, 1) > 0.9, "N {n}");
         // And with the background in 4 fragments and the outliers in clusters of 10.
         let labels = clustering(&s.truth, 4, 10);
-        let sel = select(&s.points(), &labels, SIZE, THR_PX, Strategy::Nfa).unwrap();
+        let sel = select(&s.points(), &labels, SIZE, THR_PX).unwrap();
         assert_eq!(sel.motions, 2, "N {n}, fragments");
     }
 }
@@ -266,18 +262,9 @@ fn pure_outliers_give_no_motion() {
         // A clustering of the outliers into groups of 10, 20 and 40.
         for size in [10, 20, 40] {
             let labels: Vec<i32> = (0..n).map(|i| (i / size) as i32).collect();
-            // Not gric+nfa: GRIC joins the groups of outliers into one, whose
-            // F then finds support (results/notes/selection.md).
-            for strategy in [Strategy::Nfa, Strategy::NfaGric] {
-                let sel = select(&s.points(), &labels, SIZE, THR_PX, strategy).unwrap();
-                assert_eq!(
-                    sel.motions,
-                    0,
-                    "N {n}, groups of {size}, {}",
-                    strategy.name()
-                );
-                assert!(sel.labels.iter().all(|&l| l == -1));
-            }
+            let sel = select(&s.points(), &labels, SIZE, THR_PX).unwrap();
+            assert_eq!(sel.motions, 0, "N {n}, groups of {size}");
+            assert!(sel.labels.iter().all(|&l| l == -1));
         }
     }
 }
@@ -300,20 +287,12 @@ fn three_planted_motions_at_large_n_give_three() {
         (0.0, 300.0),
     );
     s.add_outliers(&mut rng, 2000);
-    // Each motion in 20 fragments, the outliers in clusters of 12. Not
-    // gric: without a significance test the clusters of outliers that no
-    // motion absorbs stay (results/notes/selection.md).
+    // Each motion in 20 fragments, the outliers in clusters of 12.
     let labels = clustering(&s.truth, 20, 12);
-    for strategy in [Strategy::Nfa, Strategy::GricNfa, Strategy::NfaGric] {
-        let sel = select(&s.points(), &labels, SIZE, THR_PX, strategy).unwrap();
-        assert_eq!(sel.motions, 3, "{}", strategy.name());
-        for t in 0..3 {
-            assert!(
-                kept_together(&s.truth, &sel.labels, t) > 0.95,
-                "{} motion {t}",
-                strategy.name()
-            );
-        }
+    let sel = select(&s.points(), &labels, SIZE, THR_PX).unwrap();
+    assert_eq!(sel.motions, 3);
+    for t in 0..3 {
+        assert!(kept_together(&s.truth, &sel.labels, t) > 0.95, "motion {t}");
     }
 }
 
@@ -323,11 +302,7 @@ fn bad_input_is_refused_by_name() {
     let mut s = Scene::default();
     s.add_outliers(&mut rng, 20);
     let p = s.points();
-    let err = |labels: &[i32], size, thr| {
-        select(&p, labels, size, thr, Strategy::Nfa)
-            .unwrap_err()
-            .to_string()
-    };
+    let err = |labels: &[i32], size, thr| select(&p, labels, size, thr).unwrap_err().to_string();
     assert_eq!(
         err(&[0; 19], SIZE, 2.5),
         "selection: 19 labels for 20 matches"
