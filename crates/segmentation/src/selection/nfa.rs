@@ -49,7 +49,6 @@ pub const BACKGROUND_PAIRS: usize = 4096;
 /// their epipolar lines.
 pub struct Background {
     sorted: Vec<f64>,
-    data: Vec<f64>,
     image_size: (u32, u32),
 }
 
@@ -74,61 +73,13 @@ impl Background {
             })
             .collect();
         sorted.sort_by(f64::total_cmp);
-        Self {
-            sorted,
-            data: Vec::new(),
-            image_size,
-        }
+        Self { sorted, image_size }
     }
 
     /// `p(eps)`.
     pub fn probability(&self, eps_px: f64) -> f64 {
         let share = self.sorted.partition_point(|&d| d <= eps_px) as f64 / self.sorted.len() as f64;
-        let data = if self.data.is_empty() {
-            0.0
-        } else {
-            self.data.partition_point(|&d| d <= eps_px) as f64 / self.data.len() as f64
-        };
-        if self.data.is_empty() {
-            band_probability(eps_px, self.image_size).max(share)
-        } else if std::env::var("SCTL_PROTO_DATA").as_deref() != Ok("1") {
-            band_probability(eps_px, self.image_size).max(data)
-        } else {
-            band_probability(eps_px, self.image_size)
-                .max(share)
-                .max(data)
-        }
-    }
-
-    /// Prototype: with the shares of mismatched data pairs.
-    pub fn with_data(
-        mut self,
-        f: &Matrix3<f64>,
-        points: &Correspondences,
-        explained: &Explained,
-    ) -> Self {
-        if std::env::var("SCTL_PROTO_DATA").is_err() {
-            return self;
-        }
-        let idx: Vec<usize> = if std::env::var("SCTL_PROTO_DATA").as_deref() == Ok("3") {
-            (0..points.len()).filter(|&m| !explained.0[m]).collect()
-        } else {
-            (0..points.len()).collect()
-        };
-        let n = idx.len();
-        if n < 2 {
-            return self;
-        }
-        let mut d: Vec<f64> = (0..BACKGROUND_PAIRS)
-            .filter_map(|t| {
-                let i = idx[(t * 7919) % n];
-                let j = idx[(t * 104_729 + n / 2 + 1) % n];
-                (i != j).then(|| geometry::sampson_distance(f, points.point1(i), points.point2(j)))
-            })
-            .collect();
-        d.sort_by(f64::total_cmp);
-        self.data = d;
-        self
+        band_probability(eps_px, self.image_size).max(share)
     }
 }
 
@@ -154,11 +105,7 @@ impl Significance {
 
     /// `NFA < 1`: the model is meaningful.
     pub fn is_significant(&self) -> bool {
-        let t: f64 = std::env::var("SCTL_PROTO_LN")
-            .ok()
-            .and_then(|v| v.parse().ok())
-            .unwrap_or(0.0);
-        self.ln_nfa < t
+        self.ln_nfa < 0.0
     }
 }
 
@@ -174,31 +121,14 @@ pub fn significance(
     background: &Background,
     max_threshold_px: f64,
 ) -> Significance {
-    significance_fitted(
-        sorted,
-        ln_tests,
-        background,
-        max_threshold_px,
-        FITTED_MATCHES,
-    )
-}
-
-/// [`significance`] of a model that fits `fitted` matches exactly.
-pub fn significance_fitted(
-    sorted: &[f64],
-    ln_tests: f64,
-    background: &Background,
-    max_threshold_px: f64,
-    fitted: usize,
-) -> Significance {
     let n = sorted.len();
     let within = sorted.partition_point(|&r| r <= max_threshold_px);
-    if within <= fitted {
+    if within <= FITTED_MATCHES {
         return Significance::NONE;
     }
-    let s = fitted as u64;
+    let s = FITTED_MATCHES as u64;
     let mut best = Significance::NONE;
-    let mut k = fitted + 1;
+    let mut k = FITTED_MATCHES + 1;
     loop {
         let eps = sorted[k - 1];
         let p = background.probability(eps);
@@ -281,14 +211,13 @@ pub fn detect(
                     &explained,
                     irls,
                     image_size,
-                    thr_px,
                     &mut fits[i],
                 )?;
-                let (significance, model) = fit.significance(&explained, ln_tests, thr_px);
-                Some((pos, i, (significance, model)))
+                let significance = fit.significance(&explained, ln_tests, thr_px);
+                Some((pos, i, significance))
             })
-            .min_by(|a, b| a.2 .0.ln_nfa.total_cmp(&b.2 .0.ln_nfa).then(a.1.cmp(&b.1)));
-        let Some((pos, group, (significance, model))) = best else {
+            .min_by(|a, b| a.2.ln_nfa.total_cmp(&b.2.ln_nfa).then(a.1.cmp(&b.1)));
+        let Some((pos, group, significance)) = best else {
             break;
         };
         if !significance.is_significant() {
@@ -296,9 +225,8 @@ pub fn detect(
         }
         remaining.swap_remove(pos);
         let fit = fits[group].take().expect("a scored group has its fit");
-        let chosen = fit.models.into_iter().nth(model).expect("the model scored");
         let (f, residuals) =
-            polish_on_support(points, chosen.f, chosen.residuals, &explained, thr_px, irls);
+            polish_on_support(points, fit.f, fit.residuals, &explained, thr_px, irls);
         explained.add(&residuals, thr_px);
         detections.push(Detection {
             group,
@@ -366,100 +294,25 @@ impl Explained {
 struct GroupFit {
     /// How many of the group's matches counted when it was fitted.
     own: usize,
-    models: Vec<Model>,
-}
-
-struct Model {
     f: Matrix3<f64>,
     /// Sampson distances (px) of every match to `f`.
     residuals: Vec<f64>,
     background: Background,
-    fitted: usize,
-    /// ln of the number of candidates it was chosen among.
-    ln_candidates: f64,
 }
 
 impl GroupFit {
-    /// The best significance of its models over the matches that count,
-    /// and which model.
-    fn significance(
-        &self,
-        explained: &Explained,
-        ln_tests: f64,
-        thr_px: f64,
-    ) -> (Significance, usize) {
-        let ln_models = (self.models.len() as f64).ln();
-        self.models
+    /// The significance of `f` over the matches that count.
+    fn significance(&self, explained: &Explained, ln_tests: f64, thr_px: f64) -> Significance {
+        let mut r: Vec<f64> = self
+            .residuals
             .iter()
-            .enumerate()
-            .map(|(i, m)| {
-                let mut r: Vec<f64> = m
-                    .residuals
-                    .iter()
-                    .zip(&explained.0)
-                    .filter(|(_, &e)| !e)
-                    .map(|(&r, _)| r)
-                    .collect();
-                r.sort_by(f64::total_cmp);
-                let mut s = significance_fitted(
-                    &r,
-                    ln_tests + ln_models + m.ln_candidates,
-                    &m.background,
-                    thr_px,
-                    m.fitted,
-                );
-                if s.ln_nfa.is_finite() || s.ln_nfa < 0.0 {
-                    s.ln_nfa += 0.0;
-                }
-                (s, i)
-            })
-            .min_by(|a, b| a.0.ln_nfa.total_cmp(&b.0.ln_nfa).then(a.1.cmp(&b.1)))
-            .expect("a fit has a model")
+            .zip(&explained.0)
+            .filter(|(_, &e)| !e)
+            .map(|(&r, _)| r)
+            .collect();
+        r.sort_by(f64::total_cmp);
+        significance(&r, ln_tests, &self.background, thr_px)
     }
-}
-
-fn proto_e() -> bool {
-    std::env::var("SCTL_PROTO_E").is_ok()
-}
-
-/// Best-of-R five-point E (at the focal max(W, H)) on `own`.
-fn essential_fit(
-    points: &Correspondences,
-    own: &[usize],
-    image_size: (u32, u32),
-    thr_px: f64,
-) -> Option<(Matrix3<f64>, usize)> {
-    use rand::seq::index::sample;
-    let focal = f64::from(image_size.0.max(image_size.1));
-    let thr2 = thr_px * thr_px;
-    let sub = points.subset(own).ok()?;
-    let mut rng = crate::hypothesis_rng(
-        crate::splitmix64(own.len() as u64 ^ ((own[0] as u64) << 20)),
-        0,
-    );
-    let rounds: usize = std::env::var("SCTL_PROTO_E")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(32);
-    let mut best: Option<(usize, f64, Matrix3<f64>)> = None;
-    let mut r = vec![0.0; sub.len()];
-    let mut tried = 0;
-    for _ in 0..rounds {
-        let pick: Vec<usize> = sample(&mut rng, sub.len(), 5).into_vec();
-        let Ok(minimal) = sub.subset(&pick) else {
-            continue;
-        };
-        for f in crate::minimal::candidates(&minimal, focal) {
-            tried += 1;
-            geometry::sampson_distances_squared(&f, &sub, &mut r);
-            let count = r.iter().filter(|&&d| d <= thr2).count();
-            let cost: f64 = r.iter().map(|&d| d.min(thr2)).sum();
-            if best.as_ref().is_none_or(|b| (count, -cost) > (b.0, -b.1)) {
-                best = Some((count, cost, f));
-            }
-        }
-    }
-    best.map(|b| (b.2, tried))
 }
 
 /// The fit of `group` given `explained`, from `cache` when none of its
@@ -471,7 +324,6 @@ fn fit_given<'a>(
     explained: &Explained,
     irls: &IrlsParams,
     image_size: (u32, u32),
-    thr_px: f64,
     cache: &'a mut Option<GroupFit>,
 ) -> Option<&'a GroupFit> {
     let counts = |m: &usize| !explained.0[*m];
@@ -480,33 +332,13 @@ fn fit_given<'a>(
         *cache = None;
         return None;
     }
-    if cache.as_ref().map(|c| c.own) != Some(own_len)
-        || std::env::var("SCTL_PROTO_DATA").as_deref() == Ok("3")
-    {
+    if cache.as_ref().map(|c| c.own) != Some(own_len) {
         let own: Vec<usize> = group.iter().copied().filter(|m| counts(m)).collect();
-        let model = |f: Matrix3<f64>, fitted, ln_candidates| Model {
+        *cache = refit(points, &own, irls).map(|f| GroupFit {
+            own: own_len,
             f,
             residuals: sampson_residuals(points, &f),
-            background: Background::new(&f, image_size).with_data(&f, points, explained),
-            fitted,
-            ln_candidates,
-        };
-        let mut models: Vec<Model> = refit(points, &own, irls)
-            .map(|f| model(f, FITTED_MATCHES, 0.0))
-            .into_iter()
-            .collect();
-        if proto_e() {
-            if let Some((e, tried)) = essential_fit(points, &own, image_size, thr_px) {
-                let fitted = std::env::var("SCTL_PROTO_S")
-                    .ok()
-                    .and_then(|v| v.parse().ok())
-                    .unwrap_or(5);
-                models.push(model(e, fitted, (tried as f64).ln()));
-            }
-        }
-        *cache = (!models.is_empty()).then_some(GroupFit {
-            own: own_len,
-            models,
+            background: Background::new(&f, image_size),
         });
     }
     cache.as_ref()
