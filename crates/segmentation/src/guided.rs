@@ -94,6 +94,10 @@ impl CoInliers {
     pub fn kernel(&mut self) -> &CoInlierKernel {
         let (n, w) = (self.kernel.n, self.words);
         let (from, to) = (self.counted, self.hypotheses);
+        if n == 0 {
+            self.counted = to;
+            return &self.kernel;
+        }
         // One word at a time, its new hypotheses' bits gathered into one
         // column: each match's row adds the shared bits of every match
         // (contiguous, so it vectorises), and a match none of the new
@@ -246,6 +250,18 @@ mod tests {
                 assert_eq!(kernel.count(i, j), naive as f64, "{i} {j}");
             }
         }
+    }
+
+    #[test]
+    fn no_match_gives_an_empty_kernel() {
+        let mut co = CoInliers::new(0, 10);
+        co.add(&[0, 3]);
+        co.skip();
+        assert_eq!(co.len(), 2);
+        co.kernel();
+        let mut one = CoInliers::new(1, 10);
+        one.add(&[0]);
+        assert_eq!(one.kernel().count(0, 0), 0.0);
     }
 
     #[test]
