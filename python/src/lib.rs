@@ -1,13 +1,13 @@
 //! `sctl._sctl`, the compiled core of the `sctl` Python package: numpy
 //! bindings (PyO3) of the workspace crates.
 //!
-//! - [`segment::segment`]: Algorithm 1 (semi-calibrated T-Linkage) through
+//! - `segment::segment`: Algorithm 1 (semi-calibrated T-Linkage) through
 //!   `segmentation::segment`, with every `Params` key as a keyword;
-//! - [`focal::focals_from_fundamental`], [`focal::bougnoux`]: the focal
+//! - `focal::focals_from_fundamental`, `focal::bougnoux`: the focal
 //!   solvers of docs/method.md step 4 (crate `focal`);
-//! - [`tools::t_linkage`], [`tools::sampson_distances`], [`tools::metrics`]:
+//! - `tools::t_linkage`, `tools::sampson_distances`, `tools::metrics`:
 //!   crates `clustering`, `geometry`, `metrics`;
-//! - [`datasets::load_adelaidermf`], [`datasets::load_hopef`]: crate
+//! - `datasets::load_adelaidermf`, `datasets::load_hopef`: crate
 //!   `datasets`.
 //!
 //! Every computation runs without the GIL; bad input is a Python exception

@@ -27,7 +27,7 @@ pub enum FocalFileError {
         /// The reader's error.
         cause: csv::Error,
     },
-    /// The header lacks one of the [`REQUIRED_COLUMNS`].
+    /// The header lacks one of the `REQUIRED_COLUMNS`.
     #[error("{}: no column `{column}`", file.display())]
     MissingColumn {
         /// The file.

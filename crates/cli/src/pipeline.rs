@@ -2,7 +2,7 @@
 //! [`segmentation`] crate. A scene becomes [`segmentation::Matches`] (its
 //! principal point and `max(W, H)` focal prior), each scene is sampled with
 //! the seed [`scene_seed`]`(seed, name)`, and `focal_solver = "external"`
-//! reads its answers from the config's focal file ([`crate::focal_file`]).
+//! reads its answers from the config's focal file (the `focal_file` module).
 
 use crate::config::{FocalSolver, Method, PipelineConfig};
 use crate::focal_file;

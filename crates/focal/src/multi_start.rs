@@ -10,7 +10,7 @@ use crate::robust::{apply_on_failure, Solve};
 use crate::simd::Simd;
 
 /// The reference's multi-start rule (docs/method.md step 4): run
-/// [`robust_focals`] with each weight set and keep the answer with the
+/// [`robust_focals`](crate::robust_focals) with each weight set and keep the answer with the
 /// fewest iterations, ties broken by the smallest `|f1 - f2|`, remaining
 /// ties by the earlier weight set.
 ///

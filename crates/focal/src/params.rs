@@ -89,7 +89,7 @@ pub const HOPEF_WEIGHT_SETS: [FocalWeights; 6] = [
 /// The reference's `max_iters` with [`HOPEF_WEIGHT_SETS`].
 pub const HOPEF_MAX_ITERS: usize = 120;
 
-/// Parameters of [`robust_focals`].
+/// Parameters of [`robust_focals`](crate::robust_focals).
 ///
 /// Defaults (serde and [`Default`]): `f_prior` 1000 px, weights
 /// `(5e-4, 1, 5e-4, 1)`, `max_iters` 50. In the pipeline `f_prior` is

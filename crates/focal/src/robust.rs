@@ -19,7 +19,7 @@ use crate::KRUPPA_TOLERANCE;
 /// Unknowns `x = (f1, u1, v1, f2, u2, v2)`, prior
 /// `p = (f_prior, 0, 0, f_prior, 0, 0)`, objective
 /// `sum_i w_i (x_i - p_i)^2` subject to the Kruppa constraints
-/// `g1(x) = g2(x) = 0` (see [`kruppa_residuals`]). Starting from `x_0 = p`,
+/// `g1(x) = g2(x) = 0` (see [`kruppa_residuals`](crate::kruppa_residuals)). Starting from `x_0 = p`,
 /// step k takes the gradients of g1, g2 at `x_k` scaled by `1/w_i` as the
 /// directions `c1, c2` and sets `x_{k+1} = p + l1 c1 + l2 c2`, where
 /// `(l1, l2)` is the real solution of `g1 = g2 = 0` on that plane (two
@@ -30,7 +30,7 @@ use crate::KRUPPA_TOLERANCE;
 /// `k = max_iters`.
 ///
 /// Every success satisfies both constraints to [`KRUPPA_TOLERANCE`]
-/// relative to their value at the prior ([`relative_kruppa_residual`]).
+/// relative to their value at the prior ([`relative_kruppa_residual`](crate::relative_kruppa_residual)).
 /// Failures: [`FocalFailure::NoRealSolution`] when a step's plane holds no
 /// real solution, [`FocalFailure::NonFinite`],
 /// [`FocalFailure::NoConvergence`] when the final check fails, and

@@ -184,7 +184,7 @@ impl FivePointRoots {
         self.essential(self.roots[k])
     }
 
-    /// Root `k` after [`POLISH_STEPS`] Gauss–Newton steps on the ten
+    /// Root `k` after `POLISH_STEPS` Gauss–Newton steps on the ten
     /// constraints (a step kept only while it lowers their residual).
     /// Panics if `k >= len()`.
     pub fn polished(&self, k: usize) -> Result<Matrix3<f64>, GeometryError> {

@@ -11,7 +11,7 @@
 //! * [`polish`]: the reference code's nonlinear polish of a sample's F
 //!   (PoseLib's `refine_fundamental`: Levenberg–Marquardt on the
 //!   Cauchy-robust Sampson error).
-//! * [`five_point`]: the minimal relative-pose solver for hypothesis
+//! * [`mod@five_point`]: the minimal relative-pose solver for hypothesis
 //!   generation, returning every real essential matrix from 5 calibrated
 //!   bearings (Nistér 2004).
 //!

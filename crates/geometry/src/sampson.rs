@@ -278,7 +278,7 @@ dispatch! {
     /// RANSAC-style hypothesis scoring.
     ///
     /// Gives up, returning `false`, once fewer than `at_least` correspondences
-    /// can still be within the bound (tested every [`CONSENSUS_BLOCK`] matches;
+    /// can still be within the bound (tested every `CONSENSUS_BLOCK` matches;
     /// `out` then holds a partial set); `at_least = 0` never gives up. The
     /// answer and, when it is `true`, `out` do not depend on where it gave up.
     ///

@@ -72,7 +72,7 @@ pub enum SegmentationError {
     MemoryAvailable {
         /// Matches N.
         n_matches: usize,
-        /// Matches clustered ([`crate::Params::cluster_subset`], or N).
+        /// Matches clustered ([`crate::SamplingParams::cluster_subset`], or N).
         n_clustered: usize,
         /// Hypotheses M.
         n_hypotheses: usize,

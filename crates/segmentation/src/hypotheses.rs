@@ -24,7 +24,7 @@ pub struct GeneratedHypotheses {
     /// `subset`.
     pub points: Correspondences,
     /// The indices of those matches among the input's, increasing: all of
-    /// them unless [`Params::cluster_subset`] is smaller than N
+    /// them unless [`SamplingParams::cluster_subset`](crate::SamplingParams::cluster_subset) is smaller than N
     /// ([`crate::subset_indices`]).
     pub subset: Vec<usize>,
     /// Whether hypothesis `j`'s minimal sample (sample `j`) gave a fit.
@@ -74,7 +74,7 @@ pub fn centred_points(
 /// by a [`MinimalSampler`] built once for the scene, hypotheses in
 /// parallel in the caller's rayon pool; the result does not depend on the
 /// number of threads. Guided sampling draws in batches of
-/// [`Params::guided_batch`], each guided by the hypotheses before it.
+/// [`SamplingParams::guided_batch`](crate::SamplingParams::guided_batch), each guided by the hypotheses before it.
 ///
 /// Errors on invalid parameters or camera fields, fewer points than
 /// `mss_size` and non-finite coordinates.

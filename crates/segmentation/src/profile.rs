@@ -13,7 +13,7 @@ use crate::Params;
 ///   Algorithm 1.
 ///
 /// The `fast` and `large` profiles of earlier versions were folded into
-/// the default ([`RETIRED_PROFILES`]); their names are refused with a
+/// the default (`RETIRED_PROFILES`); their names are refused with a
 /// message that says so.
 ///
 /// ```

@@ -78,7 +78,7 @@ pub fn segment_cancellable(
 }
 
 /// Steps 5–9 of Algorithm 1 on hypotheses generated for these matches with
-/// these parameters ([`generate_hypotheses`]) and, for semical, their focal
+/// these parameters ([`generate_hypotheses`](crate::generate_hypotheses)) and, for semical, their focal
 /// lengths ([`estimate_hypothesis_focals`] or
 /// [`HypothesisFocals::from_answers`]); the stage timings of those steps
 /// are copied from them. The result is that of [`segment`].
@@ -393,10 +393,10 @@ fn explicit_limit(params: &Params) -> Option<u64> {
 
 /// The memory checks [`segment`] makes before sampling: the preference
 /// matrix and linkage of `num_samples` hypotheses over the matches
-/// clustered of `n_matches`, at [`ASSUMED_PREFERENCE_DENSITY`], against
+/// clustered of `n_matches`, at `ASSUMED_PREFERENCE_DENSITY`, against
 /// [`Params::max_memory_mb`] when set, and the whole run's need against the
 /// machine's available memory when it is 0 ([`check_available_memory`]).
-/// Callers that run the stages themselves ([`generate_hypotheses`] then
+/// Callers that run the stages themselves ([`generate_hypotheses`](crate::generate_hypotheses) then
 /// [`segment_with`]) call it first.
 pub fn check_memory(n_matches: usize, params: &Params) -> Result<(), SegmentationError> {
     clustering_params(params, explicit_limit(params)).check_memory(

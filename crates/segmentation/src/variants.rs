@@ -45,7 +45,7 @@ param_enum! {
     /// hypothesis F.
     pub enum MinimalSolver {
         /// The 8-point algorithm on `mss_size` matches, in the variant of
-        /// [`crate::Params::eight_point`] (the thesis).
+        /// [`crate::ReferenceCode::eight_point`] (the thesis).
         EightPoint,
         /// The 5-point essential-matrix solver (Nistér 2004; Stewénius, Engels,
         /// Nistér 2006) in the coordinates `K(f)⁻¹ x` with `f` the focal prior:
@@ -57,7 +57,7 @@ param_enum! {
 
 impl MinimalSolver {
     /// The matches one sample of this solver holds (the 8-point's is
-    /// [`crate::Params::mss_size`]).
+    /// [`crate::SamplingParams::mss_size`]).
     pub fn sample_size(self, mss_size: usize) -> usize {
         match self {
             Self::EightPoint => mss_size,
@@ -86,7 +86,7 @@ param_enum! {
     /// The focal-length solver of Algorithm 1 step 4.
     pub enum FocalSolver {
         /// The robust iterative solver of Kocur, Kyselica and Kukelova (CVPR 2024),
-        /// multi-started over [`crate::Params::weight_sets`].
+        /// multi-started over [`crate::FocalParams::weight_sets`].
         Kocur,
         /// Bougnoux's closed form (Bougnoux 1998).
         Bougnoux,
@@ -120,7 +120,7 @@ param_enum! {
         /// [`crate::neighbourhood_size`] nearest matches in image 1
         /// ([`crate::MinimalSampler`]).
         Localized,
-        /// For the first batch of [`crate::Params::guided_batch`] samples,
+        /// For the first batch of [`crate::SamplingParams::guided_batch`] samples,
         /// even hypotheses uniform and odd ones localized; after it the even
         /// (uniform) turns are guided by the hypotheses
         /// drawn so far ([`crate::CoInlierKernel`], Multi-GS of Chin, Yu
@@ -152,7 +152,7 @@ param_enum! {
 }
 
 param_enum! {
-    /// How the matches left out of a [`crate::Params::cluster_subset`] join
+    /// How the matches left out of a [`crate::SamplingParams::cluster_subset`] join
     /// the clusters ([`crate::extend_labels`]).
     pub enum SubsetExtension {
         /// By preference (Eq. 38): the cluster, or the subset's outliers,

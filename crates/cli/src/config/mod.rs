@@ -7,9 +7,9 @@
 //! names the file, the key path (e.g. `pipeline.method`) and the line.
 
 //!
-//! One file per job: [`pipeline`] (`[pipeline]`), [`dataset`] (`[dataset]`),
-//! [`tables`] (`[compare]`, `[plots]`), [`toml_error`] (errors with file,
-//! key and line), [`help`] (the `--help` text, tested against the keys),
+//! One file per job: `pipeline` (`[pipeline]`), `dataset` (`[dataset]`),
+//! `tables` (`[compare]`, `[plots]`), `toml_error` (errors with file,
+//! key and line), `help` (the `--help` text, tested against the keys),
 //! [`keys`] (the texts made from the key table: help, README, Python stub).
 
 mod dataset;

@@ -40,7 +40,7 @@ pub struct PipelineConfig {
     /// Default `default` (not serialised then).
     #[serde(skip_serializing_if = "is_default_profile")]
     pub profile: Profile,
-    /// The CSV of `focal_solver = "external"` (see [`crate::focal_file`]),
+    /// The CSV of `focal_solver = "external"` (see the `focal_file` module),
     /// relative to the working directory; `{seed}` is replaced by the seed.
     /// Answers are used as given (truncated when `truncate_focals`); a
     /// non-finite one leaves the hypothesis without focals. Default empty

@@ -62,8 +62,8 @@ impl<'de> Deserialize<'de> for PlotFormat {
 }
 
 /// `[plots]`: which figures a run writes into its directory (see
-/// [`crate::report::write_run_plots`] and
-/// [`crate::evaluate::draw_scene_plots`] for the files).
+/// `report::write_run_plots` and
+/// `evaluate::draw_scene_plots` for the files).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct PlotsConfig {

@@ -103,7 +103,7 @@ pub enum PlotFormat {
 
 impl PlotFormat {
     /// `.png` → [`PlotFormat::Png`], `.svg` → [`PlotFormat::Svg`] (any
-    /// case); anything else is [`PlotError::UnsupportedFormat`].
+    /// case); anything else is `PlotError::UnsupportedFormat`.
     pub fn from_path(path: &Path) -> Result<Self, PlotError> {
         let extension = path
             .extension()

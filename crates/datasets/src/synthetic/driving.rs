@@ -84,7 +84,7 @@ pub(super) struct Rig {
 
 /// Generates driving scene `<category>/<index>` (`category` moving cars) of
 /// a dataset made with `seed`, from the scene RNG seeded with
-/// [`scene_seed`]`(seed, category, index)`; see the [module docs](self).
+/// [`scene_seed`]`(seed, category, index)`; the model is described in `synthetic/driving.rs`.
 ///
 /// ```
 /// use datasets::synthetic::{generate_driving_scene, DrivingParams};

@@ -92,7 +92,7 @@ struct Mover {
 }
 
 /// Generates `driving-random` scene `<category>/<index>` of a dataset made
-/// with `seed`; see the [module docs](self).
+/// with `seed`; the model is described in `synthetic/driving_random.rs`.
 ///
 /// ```
 /// use datasets::synthetic::{generate_driving_random_scene, DrivingRandomParams};

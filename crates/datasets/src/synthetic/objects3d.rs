@@ -96,7 +96,7 @@ struct Body {
 }
 
 /// Generates `objects-3d` scene `<category>/<index>` of a dataset made with
-/// `seed`; see the [module docs](self).
+/// `seed`; the model is described in `synthetic/objects3d.rs`.
 ///
 /// ```
 /// use datasets::synthetic::{generate_objects3d_scene, Objects3dParams};

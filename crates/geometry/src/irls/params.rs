@@ -26,7 +26,7 @@ pub enum IrlsFit {
 
 /// Parameters of the IRLS-Tukey refinement. Missing fields take the
 /// defaults of thesis Table 1 (and the text's variant, see the [module
-/// documentation](self)) when deserialised.
+/// documentation](crate::irls)) when deserialised.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
 pub struct IrlsParams {
@@ -90,7 +90,7 @@ impl Default for IrlsParams {
 
 impl IrlsParams {
     /// The reference code's variant of the refinement (see the [module
-    /// documentation](self)): `fit = Plain`, `unit_weight_fallback = false`,
+    /// documentation](crate::irls)): `fit = Plain`, `unit_weight_fallback = false`,
     /// `sigma_offset_px = 1e-12`, `polish = true`, the other fields at their
     /// defaults.
     pub fn reference_code() -> Self {

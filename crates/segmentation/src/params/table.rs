@@ -57,9 +57,9 @@ pub enum KeyType {
     Bool,
     /// One of the names of [`Key::allowed`], separated by ` | `.
     Choice,
-    /// A preset name or a list of weight sets ([`WeightSets`]).
+    /// A preset name or a list of weight sets ([`WeightSets`](super::WeightSets)).
     WeightSets,
-    /// A rule name or `{ relative-min = f }` ([`SizeRule`]).
+    /// A rule name or `{ relative-min = f }` ([`SizeRule`](super::SizeRule)).
     SizeRule,
 }
 

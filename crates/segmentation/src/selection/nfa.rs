@@ -176,7 +176,7 @@ pub struct Detection {
 /// inlier threshold of the preferences, Eq. 38; AC-RANSAC's own threshold
 /// of the detected F, smaller, would leave its noise tail to support a
 /// copy of it). The group's F is refitted by IRLS-Tukey on its matches
-/// that count ([`fit_given`]; the fit is reused while none of them
+/// that count (`fit_given`; the fit is reused while none of them
 /// becomes explained). So a fragment of a detected motion keeps no more
 /// than the few matches of its noise tail, and a mover beyond `thr_px` of
 /// the background's F keeps the matches there.
