@@ -3,11 +3,12 @@
 //! hand-made scenes of `tests.rs`, end to end: the number of motions it
 //! finds.
 
-use super::tests::{background, kept_together, mover_at, small_mover, Motion, Scene, SIZE};
+use super::tests::{
+    background, kept_together, mover_at, one_motion_in_two_regions, pure_outliers, small_mover,
+    three_planted, Scene, SIZE,
+};
 use crate::{segment, Matches, Params};
 use nalgebra::Matrix3;
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
 
 /// The default's labels of `s` (its points shifted from the
 /// principal-point-centred frame to pixels).
@@ -48,21 +49,14 @@ fn unambiguous(s: &Scene, fs: &[Matrix3<f64>]) -> Vec<i32> {
 #[test]
 #[ignore = "not achieved: 4 motions for 3 (results/notes/selection.md, The default end to end)"]
 fn the_default_finds_three_planted_motions_at_n_50000() {
-    let mut rng = ChaCha8Rng::seed_from_u64(5);
-    let mut s = Scene::default();
-    s.add_motion(&mut rng, &background(), 30_000, (-300.0, 300.0));
-    let left = Motion::new([0.0, -0.1, 0.02], [0.4, 0.0, -0.3]);
-    s.add_motion(&mut rng, &left, 10_000, (-300.0, 0.0));
-    let right = Motion::new([0.05, 0.08, 0.0], [-0.2, 0.3, 0.1]);
-    s.add_motion(&mut rng, &right, 5000, (0.0, 300.0));
-    s.add_outliers(&mut rng, 5000);
+    let (s, planted) = three_planted([30_000, 10_000, 5000], 5000);
     let (labels, motions) = default_labels(&s);
     assert_eq!(motions, 3);
     // A sixth of the right motion lies within thr_px of the background's
     // F and a sixth within the left one's: those are left out. Of the
     // others, 0.90 of the right motion share a label (the estimated Fs'
     // bands are not the true ones), the other motions more.
-    let fs = [background(), left, right].map(|m| m.fundamental());
+    let fs = planted.map(|m| m.fundamental());
     let truth = unambiguous(&s, &fs);
     for t in 0..3 {
         let together = kept_together(&truth, &labels, t);
@@ -73,10 +67,7 @@ fn the_default_finds_three_planted_motions_at_n_50000() {
 #[test]
 fn the_default_finds_no_motion_in_pure_outliers_when_it_clusters_them_all() {
     for n in [200, 1000] {
-        let mut rng = ChaCha8Rng::seed_from_u64(4);
-        let mut s = Scene::default();
-        s.add_outliers(&mut rng, n);
-        let (labels, motions) = default_labels(&s);
+        let (labels, motions) = default_labels(&pure_outliers(n, 4));
         assert_eq!(motions, 0, "N {n}");
         assert!(labels.iter().all(|&l| l == -1), "N {n}");
     }
@@ -85,10 +76,7 @@ fn the_default_finds_no_motion_in_pure_outliers_when_it_clusters_them_all() {
 #[test]
 #[ignore = "not achieved: 1 motion at N 5000 (results/notes/selection.md, The default end to end)"]
 fn the_default_finds_no_motion_in_pure_outliers_beyond_its_subset() {
-    let mut rng = ChaCha8Rng::seed_from_u64(4);
-    let mut s = Scene::default();
-    s.add_outliers(&mut rng, 5000);
-    let (_, motions) = default_labels(&s);
+    let (_, motions) = default_labels(&pure_outliers(5000, 4));
     assert_eq!(motions, 0);
 }
 
@@ -107,13 +95,8 @@ fn the_default_keeps_a_mover_of_two_percent_at_three_px_at_n_20000() {
 
 #[test]
 fn the_default_keeps_one_motion_of_identical_f_in_two_regions_as_one() {
-    let mut rng = ChaCha8Rng::seed_from_u64(1);
-    let mut s = Scene::default();
-    let m = Motion::new([0.01, 0.05, 0.0], [0.3, 0.05, -0.2]);
-    s.add_motion(&mut rng, &m, 150, (-300.0, -20.0));
-    s.add_motion(&mut rng, &m, 150, (20.0, 300.0));
-    s.add_outliers(&mut rng, 60);
-    // add_motion labels the second call 1: the same F, one motion.
+    // add_motion labels the second part 1: the same F, one motion.
+    let (s, _) = one_motion_in_two_regions();
     let (labels, motions) = default_labels(&s);
     assert_eq!(motions, 1);
     let one: Vec<i32> = s

@@ -179,8 +179,18 @@ pub(super) fn kept_together(truth: &[i32], labels: &[i32], t: i32) -> f64 {
     counts.values().max().copied().unwrap_or(0) as f64 / of_t.len() as f64
 }
 
-#[test]
-fn two_clusters_of_one_motion_in_different_regions_are_one() {
+/// `n` uniform outliers, drawn from `seed`.
+pub(super) fn pure_outliers(n: usize, seed: u64) -> Scene {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut s = Scene::default();
+    s.add_outliers(&mut rng, n);
+    s
+}
+
+/// One motion seen in the left and the right part of the image, 150
+/// matches each (labelled 0 and 1 by `add_motion`), and 60 outliers; with
+/// the number of matches of the left part.
+pub(super) fn one_motion_in_two_regions() -> (Scene, usize) {
     let mut rng = ChaCha8Rng::seed_from_u64(1);
     let mut s = Scene::default();
     let m = Motion::new([0.01, 0.05, 0.0], [0.3, 0.05, -0.2]);
@@ -188,6 +198,27 @@ fn two_clusters_of_one_motion_in_different_regions_are_one() {
     let left = s.truth.len();
     s.add_motion(&mut rng, &m, 150, (20.0, 300.0));
     s.add_outliers(&mut rng, 60);
+    (s, left)
+}
+
+/// The background with `counts[0]` matches over the whole image, a motion
+/// of `counts[1]` in the left half and one of `counts[2]` in the right
+/// half, and `outliers`; with the three motions.
+pub(super) fn three_planted(counts: [usize; 3], outliers: usize) -> (Scene, [Motion; 3]) {
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    let mut s = Scene::default();
+    let left = Motion::new([0.0, -0.1, 0.02], [0.4, 0.0, -0.3]);
+    let right = Motion::new([0.05, 0.08, 0.0], [-0.2, 0.3, 0.1]);
+    s.add_motion(&mut rng, &background(), counts[0], (-300.0, 300.0));
+    s.add_motion(&mut rng, &left, counts[1], (-300.0, 0.0));
+    s.add_motion(&mut rng, &right, counts[2], (0.0, 300.0));
+    s.add_outliers(&mut rng, outliers);
+    (s, [background(), left, right])
+}
+
+#[test]
+fn two_clusters_of_one_motion_in_different_regions_are_one() {
+    let (s, left) = one_motion_in_two_regions();
     // Region halves as two clusters: the same F.
     let labels: Vec<i32> = (0..s.truth.len())
         .map(|i| {
@@ -256,9 +287,7 @@ fn a_mover_of_two_percent_at_three_px_survives_the_nfa() {
 #[test]
 fn pure_outliers_give_no_motion() {
     for n in [500, 5000] {
-        let mut rng = ChaCha8Rng::seed_from_u64(4);
-        let mut s = Scene::default();
-        s.add_outliers(&mut rng, n);
+        let s = pure_outliers(n, 4);
         // A clustering of the outliers into groups of 10, 20 and 40.
         for size in [10, 20, 40] {
             let labels: Vec<i32> = (0..n).map(|i| (i / size) as i32).collect();
@@ -271,22 +300,7 @@ fn pure_outliers_give_no_motion() {
 
 #[test]
 fn three_planted_motions_at_large_n_give_three() {
-    let mut rng = ChaCha8Rng::seed_from_u64(5);
-    let mut s = Scene::default();
-    s.add_motion(&mut rng, &background(), 12_000, (-300.0, 300.0));
-    s.add_motion(
-        &mut rng,
-        &Motion::new([0.0, -0.1, 0.02], [0.4, 0.0, -0.3]),
-        4000,
-        (-300.0, 0.0),
-    );
-    s.add_motion(
-        &mut rng,
-        &Motion::new([0.05, 0.08, 0.0], [-0.2, 0.3, 0.1]),
-        2000,
-        (0.0, 300.0),
-    );
-    s.add_outliers(&mut rng, 2000);
+    let (s, _) = three_planted([12_000, 4000, 2000], 2000);
     // Each motion in 20 fragments, the outliers in clusters of 12.
     let labels = clustering(&s.truth, 20, 12);
     let sel = select(&s.points(), &labels, SIZE, THR_PX).unwrap();
@@ -298,10 +312,7 @@ fn three_planted_motions_at_large_n_give_three() {
 
 #[test]
 fn bad_input_is_refused_by_name() {
-    let mut rng = ChaCha8Rng::seed_from_u64(6);
-    let mut s = Scene::default();
-    s.add_outliers(&mut rng, 20);
-    let p = s.points();
+    let p = pure_outliers(20, 6).points();
     let err = |labels: &[i32], size, thr| select(&p, labels, size, thr).unwrap_err().to_string();
     assert_eq!(
         err(&[0; 19], SIZE, 2.5),
