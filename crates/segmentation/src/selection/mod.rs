@@ -13,6 +13,7 @@
 //! cluster's F is refitted here by IRLS-Tukey (docs/method.md, Algorithm 1
 //! step 3; [`CLUSTER_REFIT_ITERS`] iterations) on its matches alone.
 
+mod background;
 mod binomial;
 #[cfg(test)]
 mod default_tests;
@@ -20,6 +21,7 @@ pub mod nfa;
 #[cfg(test)]
 mod tests;
 
+pub use background::Background;
 pub use binomial::ln_binomial_tail;
 
 use geometry::{sampson_distances_squared, Correspondences, IrlsParams, IrlsWorkspace};

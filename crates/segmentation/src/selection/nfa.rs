@@ -9,6 +9,7 @@
 //! testing the next (Rabin, Delon, Gousseau & Moisan, "MAC-RANSAC: a robust
 //! algorithm for the recognition of multiple objects", 3DPVT 2010).
 
+pub use super::background::Background;
 use super::binomial::ln_binomial_tail;
 use super::{refit, sampson_residuals};
 use geometry::{Correspondences, IrlsParams};
@@ -25,63 +26,6 @@ pub const FITTED_MATCHES: usize = 7;
 const K_DENSE: usize = 64;
 /// Ratio of consecutive supports tried above [`K_DENSE`].
 const K_GRID_RATIO: f64 = 1.02;
-
-/// The probability that a background match lies within `eps_px` of an
-/// epipolar line in image 2: the area of a band of width `2 eps` along a
-/// line no longer than the image diagonal `L`, over the image area `A`,
-/// `p = min(1, 2 eps L / A)` (Moisan & Stival 2004, Section 3.2).
-pub fn band_probability(eps_px: f64, image_size: (u32, u32)) -> f64 {
-    let (w, h) = (f64::from(image_size.0), f64::from(image_size.1));
-    (2.0 * eps_px * w.hypot(h) / (w * h)).min(1.0)
-}
-
-/// Background pairs per F for [`Background::probability`].
-pub const BACKGROUND_PAIRS: usize = 4096;
-
-/// The background model of one F: matches `(x₁, x₂)` independent and
-/// uniform over the two images (taken centred on the principal point).
-/// `p(eps)`, the probability that such a match lies within Sampson distance
-/// `eps` of F, is the larger of the band of [`band_probability`] and the
-/// share of [`BACKGROUND_PAIRS`] fixed quasi-random pairs (the additive
-/// recurrence of the generalised golden ratio in four dimensions, Roberts
-/// 2018) within `eps`: the band alone underestimates p for an F whose
-/// epipoles lie inside the images, where many random matches fall near
-/// their epipolar lines.
-pub struct Background {
-    sorted: Vec<f64>,
-    image_size: (u32, u32),
-}
-
-impl Background {
-    /// The background of `f` in an image of `image_size` (W, H).
-    pub fn new(f: &Matrix3<f64>, image_size: (u32, u32)) -> Self {
-        // φ₄: the positive root of x⁵ = x + 1.
-        let phi: f64 = 1.167_303_978_261_418_8;
-        let alpha = [
-            1.0 / phi,
-            1.0 / phi.powi(2),
-            1.0 / phi.powi(3),
-            1.0 / phi.powi(4),
-        ];
-        let (w, h) = (f64::from(image_size.0), f64::from(image_size.1));
-        let mut sorted: Vec<f64> = (1..=BACKGROUND_PAIRS)
-            .map(|i| {
-                let u = alpha.map(|a| (0.5 + a * i as f64).fract());
-                let p1 = [(u[0] - 0.5) * w, (u[1] - 0.5) * h];
-                let p2 = [(u[2] - 0.5) * w, (u[3] - 0.5) * h];
-                geometry::sampson_distance(f, p1, p2)
-            })
-            .collect();
-        sorted.sort_by(f64::total_cmp);
-        Self { sorted, image_size }
-    }
-
-    /// `p(eps)`.
-    pub fn probability(&self, eps_px: f64) -> f64 {
-        let share = self.sorted.partition_point(|&d| d <= eps_px) as f64 / self.sorted.len() as f64;
-        band_probability(eps_px, self.image_size).max(share)
-    }
-}
 
 /// A model's a-contrario score.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -348,13 +292,6 @@ fn fit_given<'a>(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn band_probability_is_the_band_over_the_area() {
-        // 2 · 1 px · 500 px / (400 · 300 px²).
-        assert!((band_probability(1.0, (400, 300)) - 1000.0 / 120_000.0).abs() < 1e-15);
-        assert_eq!(band_probability(1e6, (400, 300)), 1.0);
-    }
 
     #[test]
     fn exact_support_is_meaningful_and_chance_support_is_not() {
