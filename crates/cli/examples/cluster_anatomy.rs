@@ -24,7 +24,7 @@ use geometry::{sampson_distances_squared, Correspondences};
 use nalgebra::Matrix3;
 use sctl::config::PipelineConfig;
 use sctl::pipeline::{matches, scene_seed};
-use segmentation::selection::{nfa, select_groups, Role};
+use segmentation::selection::{nfa, select_groups};
 use segmentation::{segment, subset_indices, Params, Profile};
 use std::process::ExitCode;
 
@@ -210,8 +210,7 @@ impl Anatomy {
         let groups: Vec<Vec<usize>> = (1..=k as i32)
             .map(|t| (0..truth.len()).filter(|&i| truth[i] == t).collect())
             .collect();
-        let roles = vec![Role::Clustered; points.len()];
-        let Ok(selected) = select_groups(&points, &groups, &roles, m.image_size, thr_px) else {
+        let Ok(selected) = select_groups(&points, &groups, m.image_size, thr_px) else {
             return;
         };
         self.scenes += 1;

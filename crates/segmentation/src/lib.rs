@@ -91,4 +91,4 @@ pub use segment::{
     check_memory, fit_cluster, segment, segment_cancellable, segment_with, segment_with_cancellable,
 };
 pub use selection::{select, Selection, SelectionError};
-pub use subset::{extend_labels, selection_roles, subset_indices, ClusteredSubset};
+pub use subset::{extend_labels, subset_indices, ClusteredSubset};

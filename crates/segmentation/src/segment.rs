@@ -4,8 +4,7 @@
 use crate::assignment::members;
 use crate::memory_guard::{memory_limit, ASSUMED_PREFERENCE_DENSITY};
 use crate::merge::inlier_words;
-use crate::selection::{select_groups, Role};
-use crate::selection_roles;
+use crate::selection::select_groups;
 use crate::{
     available_memory, centred_points, check_available_memory, check_matches,
     estimate_hypothesis_focals, extend_labels, focal_filter, generate_hypotheses_cancellable,
@@ -295,12 +294,7 @@ fn cluster_kept(
         // The clusters, every match labelled, are the selection's groups.
         let groups = members(&labels, clusters);
         let thr = params.refinement.thr_px;
-        let roles = if subset_active {
-            selection_roles(params.sampling.seed, matches.len(), &generated.subset)
-        } else {
-            vec![Role::Clustered; matches.len()]
-        };
-        let selected = select_groups(&all_points, &groups, &roles, matches.image_size, thr)?;
+        let selected = select_groups(&all_points, &groups, matches.image_size, thr)?;
         (selected.labels, selected.motions)
     } else {
         (labels, clusters)

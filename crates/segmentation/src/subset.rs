@@ -15,7 +15,6 @@
 use crate::assignment::drop_small_and_renumber;
 use crate::mean_preference::nearest_mean_preference;
 use crate::merge::cluster_hypotheses;
-use crate::selection::Role;
 use crate::{hypothesis_rng, InlierBits, SubsetExtension};
 use geometry::{sampson_distances_squared, Correspondences};
 use nalgebra::Matrix3;
@@ -38,31 +37,6 @@ pub fn subset_indices(seed: u64, n: usize, size: usize) -> Vec<usize> {
         return (0..n).collect();
     }
     sorted_draw(seed, usize::MAX, n, size)
-}
-
-/// The [`Role`] of each of `n` matches in the selection after clustering
-/// the `subset` (increasing indices, [`subset_indices`]): the subset's
-/// matches are [`Role::Clustered`]; of the others, half (rounded down),
-/// drawn uniformly from stream 2⁶⁴ − 2 of [`hypothesis_rng`], are
-/// [`Role::Fit`] and the rest [`Role::Test`] (sample splitting; see
-/// [`Role`]).
-///
-/// ```
-/// use segmentation::{selection::Role, selection_roles, subset_indices};
-/// let subset = subset_indices(12345, 5000, 1000);
-/// let roles = selection_roles(12345, 5000, &subset);
-/// let count = |r| roles.iter().filter(|&&x| x == r).count();
-/// assert_eq!((count(Role::Clustered), count(Role::Fit), count(Role::Test)), (1000, 2000, 2000));
-/// assert!(subset.iter().all(|&i| roles[i] == Role::Clustered));
-/// ```
-pub fn selection_roles(seed: u64, n: usize, subset: &[usize]) -> Vec<Role> {
-    let mut roles = vec![Role::Test; n];
-    subset.iter().for_each(|&i| roles[i] = Role::Clustered);
-    let rest: Vec<usize> = (0..n).filter(|&i| roles[i] == Role::Test).collect();
-    for k in sorted_draw(seed, usize::MAX - 1, rest.len(), rest.len() / 2) {
-        roles[rest[k]] = Role::Fit;
-    }
-    roles
 }
 
 /// `size` distinct indices of `0..n` (`size ≤ n`) drawn uniformly from

@@ -65,31 +65,6 @@ pub enum SelectionError {
     /// An image side of zero pixels.
     #[error("selection: image size {0} x {1} has a zero side")]
     BadImageSize(u32, u32),
-    /// Roles and matches differ in number.
-    #[error("selection: {roles} roles for {points} matches")]
-    RolesMismatch {
-        /// Number of roles.
-        roles: usize,
-        /// Number of matches.
-        points: usize,
-    },
-}
-
-/// What a match does in the a-contrario detection ([`nfa::detect`]).
-/// When the clustering saw a subset of the matches, every other match
-/// joined a cluster for lying near its model (the subset's extension); the
-/// selection then splits those matches in two (sample splitting): half
-/// fit the clusters' Fs, the other half score them. Without a subset every
-/// match is [`Role::Clustered`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Role {
-    /// Clustered: fits its group's F and is scored.
-    Clustered,
-    /// Beyond the clustered subset, drawn to fit: fits its group's F, is
-    /// not scored.
-    Fit,
-    /// Beyond the clustered subset, held out: is scored, fits no F.
-    Test,
 }
 
 /// The clusters that are motions.
@@ -132,15 +107,7 @@ pub fn select(
 ) -> Result<Selection, SelectionError> {
     check(points, labels, image_size, thr_px)?;
     let irls = refit_params(thr_px);
-    let roles = vec![Role::Clustered; points.len()];
-    let labels = by_nfa(
-        points,
-        &groups_of(labels),
-        &roles,
-        image_size,
-        thr_px,
-        &irls,
-    );
+    let labels = by_nfa(points, &groups_of(labels), image_size, thr_px, &irls);
     Ok(Selection::of(labels))
 }
 
@@ -173,10 +140,9 @@ fn check_scene(image_size: (u32, u32), thr_px: f64) -> Result<(), SelectionError
 }
 
 /// The motions among `groups` (lists of indices into the
-/// principal-point-centred `points`, e.g. T-Linkage's clusters, every match
-/// labelled when a subset was clustered) by a-contrario detection over
-/// every match ([`nfa::detect`]; `roles`, one per match, say which fit and
-/// which score a group's F), labelled so: a match
+/// principal-point-centred `points`, e.g. T-Linkage's clusters, or those of
+/// a subset of the matches) by a-contrario detection over every match
+/// ([`nfa::detect`]), labelled so: a match
 /// of a detected group takes its motion; a group not detected joins, as a
 /// whole, the detected F that explains most of its matches within
 /// `thr_px` (those it explains take its label, the others the nearest
@@ -186,27 +152,19 @@ fn check_scene(image_size: (u32, u32), thr_px: f64) -> Result<(), SelectionError
 ///
 /// ```
 /// use geometry::Correspondences;
-/// use segmentation::selection::{select_groups, Role};
+/// use segmentation::selection::select_groups;
 /// // No group: no motion, every match an outlier.
 /// let p = [[0.0, 0.0]; 20];
 /// let pts = Correspondences::new(&p, &p).unwrap();
-/// let roles = [Role::Clustered; 20];
-/// let s = select_groups(&pts, &[], &roles, (640, 480), 2.5).unwrap();
+/// let s = select_groups(&pts, &[], (640, 480), 2.5).unwrap();
 /// assert_eq!((s.motions, s.labels), (0, vec![-1; 20]));
 /// ```
 pub fn select_groups(
     points: &Correspondences,
     groups: &[Vec<usize>],
-    roles: &[Role],
     image_size: (u32, u32),
     thr_px: f64,
 ) -> Result<Selection, SelectionError> {
-    if roles.len() != points.len() {
-        return Err(SelectionError::RolesMismatch {
-            roles: roles.len(),
-            points: points.len(),
-        });
-    }
     if let Some(&index) = groups.iter().flatten().find(|&&m| m >= points.len()) {
         return Err(SelectionError::BadIndex {
             index,
@@ -215,7 +173,7 @@ pub fn select_groups(
     }
     check_scene(image_size, thr_px)?;
     let irls = refit_params(thr_px);
-    let labels = by_nfa(points, groups, roles, image_size, thr_px, &irls);
+    let labels = by_nfa(points, groups, image_size, thr_px, &irls);
     Ok(Selection::of(labels))
 }
 
@@ -229,12 +187,11 @@ pub fn select_groups(
 fn by_nfa(
     points: &Correspondences,
     groups: &[Vec<usize>],
-    roles: &[Role],
     image_size: (u32, u32),
     thr_px: f64,
     irls: &IrlsParams,
 ) -> Vec<i32> {
-    let detections = nfa::detect(points, groups, roles, image_size, thr_px, irls);
+    let detections = nfa::detect(points, groups, image_size, thr_px, irls);
     let residuals: Vec<&Vec<f64>> = detections.iter().map(|d| &d.residuals).collect();
     let nearest = |m: usize| {
         residuals

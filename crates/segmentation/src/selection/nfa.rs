@@ -11,7 +11,7 @@
 
 pub use super::background::Background;
 use super::binomial::ln_binomial_tail;
-use super::{refit, sampson_residuals, Role};
+use super::{refit, sampson_residuals};
 use geometry::{Correspondences, IrlsParams};
 use nalgebra::Matrix3;
 
@@ -125,34 +125,24 @@ pub struct Detection {
 /// than the few matches of its noise tail, and a mover beyond `thr_px` of
 /// the background's F keeps the matches there.
 ///
-/// `roles` (one per match) split the matches beyond a clustered subset
-/// in two (sample splitting, [`Role`]): a group's F is fitted on its
-/// matches that are not [`Role::Test`], and scored on the matches that
-/// are not [`Role::Fit`]. The subset's extension chose those matches for
-/// lying near the cluster's model; an F fitted on them and scored on them
-/// counts its own choice as support (double dipping).
-///
-/// The number of tests is `G · (n − 7)`: G groups of at least 8 matches
-/// that fit, n − 7 thresholds each, n the matches scored.
+/// The number of tests is `G · (N − 7)`: G groups of at least 8 matches,
+/// N − 7 thresholds each.
 pub fn detect(
     points: &Correspondences,
     groups: &[Vec<usize>],
-    roles: &[Role],
     image_size: (u32, u32),
     thr_px: f64,
     irls: &IrlsParams,
 ) -> Vec<Detection> {
-    let fits_f = |m: &usize| roles[*m] != Role::Test;
+    let n = points.len();
     let mut remaining: Vec<usize> = (0..groups.len())
-        .filter(|&i| groups[i].iter().filter(|m| fits_f(m)).count() > FITTED_MATCHES)
+        .filter(|&i| groups[i].len() > FITTED_MATCHES)
         .collect();
-    let scored = Scored(roles.iter().map(|&r| r != Role::Fit).collect());
-    let n = scored.0.iter().filter(|&&s| s).count();
     if remaining.is_empty() || n <= FITTED_MATCHES {
         return Vec::new();
     }
     let ln_tests = (remaining.len() as f64).ln() + ((n - FITTED_MATCHES) as f64).ln();
-    let mut explained = Explained(vec![false; points.len()]);
+    let mut explained = Explained(vec![false; n]);
     let mut fits: Vec<Option<GroupFit>> = groups.iter().map(|_| None).collect();
     let mut detections = Vec::new();
     loop {
@@ -163,13 +153,12 @@ pub fn detect(
                 let fit = fit_given(
                     points,
                     &groups[i],
-                    roles,
                     &explained,
                     irls,
                     image_size,
                     &mut fits[i],
                 )?;
-                let significance = fit.significance(&explained, &scored, ln_tests, thr_px);
+                let significance = fit.significance(&explained, ln_tests, thr_px);
                 Some((pos, i, significance))
             })
             .min_by(|a, b| a.2.ln_nfa.total_cmp(&b.2.ln_nfa).then(a.1.cmp(&b.1)));
@@ -243,9 +232,6 @@ impl Explained {
     }
 }
 
-/// The matches scored (not [`Role::Fit`]).
-struct Scored(Vec<bool>);
-
 /// A group's F refitted on its matches that count, with what scoring it
 /// needs: it changes only when one of those matches becomes explained, so
 /// a round reuses the last round's fit of a group none of whose matches
@@ -260,19 +246,13 @@ struct GroupFit {
 }
 
 impl GroupFit {
-    /// The significance of `f` over the matches scored that count.
-    fn significance(
-        &self,
-        explained: &Explained,
-        scored: &Scored,
-        ln_tests: f64,
-        thr_px: f64,
-    ) -> Significance {
+    /// The significance of `f` over the matches that count.
+    fn significance(&self, explained: &Explained, ln_tests: f64, thr_px: f64) -> Significance {
         let mut r: Vec<f64> = self
             .residuals
             .iter()
-            .zip(explained.0.iter().zip(&scored.0))
-            .filter(|(_, (&e, &s))| s && !e)
+            .zip(&explained.0)
+            .filter(|(_, &e)| !e)
             .map(|(&r, _)| r)
             .collect();
         r.sort_by(f64::total_cmp);
@@ -280,19 +260,18 @@ impl GroupFit {
     }
 }
 
-/// The fit of `group` on its matches that fit (`roles`) and count given
-/// `explained`, from `cache` when none of them became explained since;
-/// None when 7 or fewer remain or the fit fails.
+/// The fit of `group` given `explained`, from `cache` when none of its
+/// matches became explained since; None when fewer than 8 of its matches
+/// count or the fit fails.
 fn fit_given<'a>(
     points: &Correspondences,
     group: &[usize],
-    roles: &[Role],
     explained: &Explained,
     irls: &IrlsParams,
     image_size: (u32, u32),
     cache: &'a mut Option<GroupFit>,
 ) -> Option<&'a GroupFit> {
-    let counts = |m: &usize| roles[*m] != Role::Test && !explained.0[*m];
+    let counts = |m: &usize| !explained.0[*m];
     let own_len = group.iter().filter(|m| counts(m)).count();
     if own_len <= FITTED_MATCHES {
         *cache = None;
