@@ -143,7 +143,7 @@ pub fn detect(
     }
     let ln_tests = (remaining.len() as f64).ln() + ((n - FITTED_MATCHES) as f64).ln();
     let mut explained = Explained(vec![false; n]);
-    let mut fits: Vec<Option<GroupFit>> = groups.iter().map(|_| None).collect();
+    let mut fits: Vec<Option<Cached>> = groups.iter().map(|_| None).collect();
     let mut detections = Vec::new();
     loop {
         let best = remaining
@@ -169,7 +169,10 @@ pub fn detect(
             break;
         }
         remaining.swap_remove(pos);
-        let fit = fits[group].take().expect("a scored group has its fit");
+        let fit = fits[group]
+            .take()
+            .and_then(|c| c.fit)
+            .expect("a scored group has its fit");
         let (f, residuals) =
             polish_on_support(points, fit.f, fit.residuals, &explained, thr_px, irls);
         explained.add(&residuals, thr_px);
@@ -237,8 +240,6 @@ impl Explained {
 /// a round reuses the last round's fit of a group none of whose matches
 /// the last detection explained.
 struct GroupFit {
-    /// How many of the group's matches counted when it was fitted.
-    own: usize,
     f: Matrix3<f64>,
     /// Sampson distances (px) of every match to `f`.
     residuals: Vec<f64>,
@@ -260,6 +261,14 @@ impl GroupFit {
     }
 }
 
+/// A group's last refit: how many of its matches counted, and the fit
+/// (None when the refit failed, which is then not tried again until that
+/// number changes).
+struct Cached {
+    own: usize,
+    fit: Option<GroupFit>,
+}
+
 /// The fit of `group` given `explained`, from `cache` when none of its
 /// matches became explained since; None when fewer than 8 of its matches
 /// count or the fit fails.
@@ -269,7 +278,7 @@ fn fit_given<'a>(
     explained: &Explained,
     irls: &IrlsParams,
     image_size: (u32, u32),
-    cache: &'a mut Option<GroupFit>,
+    cache: &'a mut Option<Cached>,
 ) -> Option<&'a GroupFit> {
     let counts = |m: &usize| !explained.0[*m];
     let own_len = group.iter().filter(|m| counts(m)).count();
@@ -279,14 +288,14 @@ fn fit_given<'a>(
     }
     if cache.as_ref().map(|c| c.own) != Some(own_len) {
         let own: Vec<usize> = group.iter().copied().filter(|m| counts(m)).collect();
-        *cache = refit(points, &own, irls).map(|f| GroupFit {
-            own: own_len,
+        let fit = refit(points, &own, irls).map(|f| GroupFit {
             f,
             residuals: sampson_residuals(points, &f),
             background: Background::new(&f, image_size),
         });
+        *cache = Some(Cached { own: own_len, fit });
     }
-    cache.as_ref()
+    cache.as_ref().and_then(|c| c.fit.as_ref())
 }
 
 #[cfg(test)]
