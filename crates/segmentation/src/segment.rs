@@ -294,10 +294,7 @@ fn cluster_kept(
         // The clusters, every match labelled, are the selection's groups.
         let groups = members(&labels, clusters);
         let thr = params.refinement.thr_px;
-        crate::selection::nfa::BEYOND_SUBSET.with(|b| b.set(subset_active));
-        let selected = select_groups(&all_points, &groups, matches.image_size, thr);
-        crate::selection::nfa::BEYOND_SUBSET.with(|b| b.set(false));
-        let selected = selected?;
+        let selected = select_groups(&all_points, &groups, matches.image_size, thr)?;
         (selected.labels, selected.motions)
     } else {
         (labels, clusters)

@@ -186,11 +186,6 @@ pub fn detect(
     detections
 }
 
-thread_local! {
-    /// Prototype: the scene's clustering ran on a subset.
-    pub static BEYOND_SUBSET: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
-}
-
 /// Rounds of [`polish_on_support`].
 const POLISH_ROUNDS: usize = 2;
 
@@ -210,37 +205,13 @@ fn polish_on_support(
     thr_px: f64,
     irls: &IrlsParams,
 ) -> (Matrix3<f64>, Vec<f64>) {
-    // Prototype: SCTL_PROTO_POLISH=conv refits until the support stops
-    // growing (at most 20 rounds); =lo first widens the support band to
-    // 3, 2.5, 2, 1.5 x thr_px (LO+, Lebeda, Matas & Chum, BMVC 2012).
-    let mut mode = std::env::var("SCTL_PROTO_POLISH").unwrap_or_default();
-    if mode == "conv_subset" {
-        mode = if BEYOND_SUBSET.with(|b| b.get()) {
-            "conv".into()
-        } else {
-            String::new()
-        };
-    }
-    let rounds = if mode.is_empty() { POLISH_ROUNDS } else { 20 };
-    let mut last = 0;
-    for round in 0..rounds {
-        let widen = if mode == "lo" {
-            (3.0 - 0.5 * round as f64).max(1.0)
-        } else {
-            1.0
-        };
+    for _ in 0..POLISH_ROUNDS {
         let support: Vec<usize> = residuals
             .iter()
             .enumerate()
-            .filter(|&(m, &r)| r <= widen * thr_px && !explained.0[m])
+            .filter(|&(m, &r)| r <= thr_px && !explained.0[m])
             .map(|(m, _)| m)
             .collect();
-        if widen == 1.0 {
-            if !mode.is_empty() && support.len() <= last {
-                break;
-            }
-            last = support.len();
-        }
         match refit(points, &support, irls) {
             Some(refitted) => {
                 f = refitted;
