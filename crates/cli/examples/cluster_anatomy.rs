@@ -18,6 +18,7 @@
 //!     [--config FILE.toml] [--num-samples M] [--seeds 12345,23456,34567]
 //! ```
 
+use clap::Parser;
 use datasets::synthetic::Preset;
 use datasets::Scene;
 use geometry::{sampson_distances_squared, Correspondences};
@@ -26,53 +27,59 @@ use sctl::config::PipelineConfig;
 use sctl::pipeline::{matches, scene_seed};
 use segmentation::selection::{nfa, select_groups};
 use segmentation::{segment, subset_indices, Params, Profile};
+use std::path::PathBuf;
 use std::process::ExitCode;
 
+/// What the clusters of a configuration are made of on synthetic scenes.
+#[derive(Parser)]
 struct Options {
+    /// The synthetic preset (`sctl synth --help` lists them).
+    #[arg(long, default_value = "adelaide-like", value_parser = preset)]
     preset: Preset,
+    /// The first scene index.
+    #[arg(long, default_value_t = 800)]
     from: u32,
+    /// The last scene index.
+    #[arg(long, default_value_t = 819)]
     to: u32,
-    params: Params,
+    /// A profile's parameters (`default`, `thesis`).
+    #[arg(long, value_parser = profile, conflicts_with = "config")]
+    profile: Option<Profile>,
+    /// The parameters of a config file's `[pipeline]` table.
+    #[arg(long)]
+    config: Option<PathBuf>,
+    /// M, the hypotheses per scene, instead of the parameters'.
+    #[arg(long)]
+    num_samples: Option<usize>,
+    /// The run seeds, comma-separated.
+    #[arg(long, value_delimiter = ',', default_values_t = [12345, 23456, 34567])]
     seeds: Vec<u64>,
 }
 
-fn parse(mut args: impl Iterator<Item = String>) -> Result<Options, String> {
-    let mut o = Options {
-        preset: Preset::AdelaideLike,
-        from: 800,
-        to: 819,
-        params: Params::default(),
-        seeds: vec![12345, 23456, 34567],
-    };
-    let mut num_samples = None;
-    while let Some(flag) = args.next() {
-        let value = args.next().ok_or(format!("{flag} needs a value"))?;
-        let number = |v: &str| v.parse::<u64>().map_err(|e| format!("{flag} {v}: {e}"));
-        match flag.as_str() {
-            "--preset" => {
-                o.preset = Preset::from_name(&value).ok_or(format!("unknown preset {value}"))?
-            }
-            "--from" => o.from = number(&value)? as u32,
-            "--to" => o.to = number(&value)? as u32,
-            "--profile" => {
-                o.params = Profile::from_name(&value)
-                    .ok_or(format!("unknown profile {value}"))?
-                    .params()
-            }
-            "--config" => {
-                o.params = PipelineConfig::load(std::path::Path::new(&value))
-                    .map_err(|e| e.to_string())?
-                    .params()
-            }
-            "--num-samples" => num_samples = Some(number(&value)? as usize),
-            "--seeds" => o.seeds = value.split(',').map(number).collect::<Result<_, _>>()?,
-            other => return Err(format!("unknown option {other}")),
+fn preset(name: &str) -> Result<Preset, String> {
+    Preset::from_name(name).ok_or(format!("unknown preset {name}"))
+}
+
+fn profile(name: &str) -> Result<Profile, String> {
+    Profile::from_name(name).ok_or(format!("unknown profile {name}"))
+}
+
+impl Options {
+    /// The parameters: the config's, else the profile's, else the
+    /// default, with `--num-samples`.
+    fn params(&self) -> Result<Params, String> {
+        let mut params = match (&self.config, self.profile) {
+            (Some(path), _) => PipelineConfig::load(path)
+                .map_err(|e| e.to_string())?
+                .params(),
+            (None, Some(profile)) => profile.params(),
+            (None, None) => Params::default(),
+        };
+        if let Some(m) = self.num_samples {
+            params.sampling.num_samples = m;
         }
+        Ok(params)
     }
-    if let Some(m) = num_samples {
-        o.params.sampling.num_samples = m;
-    }
-    Ok(o)
 }
 
 /// Counts over every scene and seed.
@@ -277,8 +284,9 @@ fn scene_labels(scene: &Scene) -> Vec<i32> {
 }
 
 fn main() -> ExitCode {
-    let o = match parse(std::env::args().skip(1)) {
-        Ok(o) => o,
+    let o = Options::parse();
+    let params = match o.params() {
+        Ok(p) => p,
         Err(e) => {
             eprintln!("cluster_anatomy: {e}");
             return ExitCode::FAILURE;
@@ -293,11 +301,10 @@ fn main() -> ExitCode {
     };
     let mut anatomy = Anatomy::default();
     for scene in &scenes {
-        anatomy.add_true_models(scene, o.params.refinement.thr_px);
-        anatomy.add_true_groups(scene, o.params.refinement.thr_px);
+        anatomy.add_true_models(scene, params.refinement.thr_px);
+        anatomy.add_true_groups(scene, params.refinement.thr_px);
         for &seed in &o.seeds {
-            let p = o
-                .params
+            let p = params
                 .clone()
                 .with(|q| q.sampling.seed = scene_seed(seed, &scene.name));
             let mut clustered = vec![false; scene.len()];

@@ -15,6 +15,7 @@
 //! (the thesis's protocol, GT outliers excluded, and over all points), and
 //! the scenes × seeds it averaged.
 
+use clap::Parser;
 use datasets::Scene;
 use sctl::config::ExperimentConfig;
 use sctl::dataset::load_scenes;
@@ -23,46 +24,29 @@ use segmentation::{segment, Params};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+/// The ME of a config's pipeline at focal priors that are multiples of
+/// the reference focal.
+#[derive(Parser)]
 struct Options {
+    /// The experiment config: its data set and its `[pipeline]` table.
     config: PathBuf,
+    /// The multiples of the reference focal, comma-separated, each > 0.
+    #[arg(long, value_delimiter = ',', value_parser = positive,
+          default_values_t = [0.25, 0.5, 1.0, 2.0, 4.0])]
     scales: Vec<f64>,
+    /// The run seeds, comma-separated (each scene's seed derives from them
+    /// as in `sctl run`).
+    #[arg(long, value_delimiter = ',', default_values_t = [12345, 23456, 34567])]
     seeds: Vec<u64>,
 }
 
-fn parse(mut args: impl Iterator<Item = String>) -> Result<Options, String> {
-    let config = args
-        .next()
-        .ok_or("usage: focal_prior CONFIG.toml [--scales S,..] [--seeds S,..]")?;
-    let mut o = Options {
-        config: PathBuf::from(config),
-        scales: vec![0.25, 0.5, 1.0, 2.0, 4.0],
-        seeds: vec![12345, 23456, 34567],
-    };
-    while let Some(flag) = args.next() {
-        let value = args.next().ok_or(format!("{flag} needs a value"))?;
-        match flag.as_str() {
-            "--scales" => {
-                o.scales = value
-                    .split(',')
-                    .map(|v| v.parse::<f64>().map_err(|e| format!("--scales {v}: {e}")))
-                    .collect::<Result<_, _>>()?
-            }
-            "--seeds" => {
-                o.seeds = value
-                    .split(',')
-                    .map(|v| v.parse::<u64>().map_err(|e| format!("--seeds {v}: {e}")))
-                    .collect::<Result<_, _>>()?
-            }
-            other => return Err(format!("unknown option {other}")),
-        }
+/// A finite number > 0.
+fn positive(v: &str) -> Result<f64, String> {
+    match v.parse::<f64>() {
+        Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
+        Ok(x) => Err(format!("{x} is not a finite number > 0")),
+        Err(e) => Err(e.to_string()),
     }
-    if o.scales.iter().any(|s| !(s.is_finite() && *s > 0.0)) {
-        return Err(format!(
-            "--scales must be finite and > 0, got {:?}",
-            o.scales
-        ));
-    }
-    Ok(o)
 }
 
 /// The focal the prior is a multiple of: the true focal, else `max(W, H)`.
@@ -110,7 +94,7 @@ fn run(o: &Options) -> Result<(), String> {
 }
 
 fn main() -> ExitCode {
-    match parse(std::env::args().skip(1)).and_then(|o| run(&o)) {
+    match run(&Options::parse()) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("focal_prior: {e}");

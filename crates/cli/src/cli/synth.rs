@@ -17,9 +17,14 @@ pub struct Args {
     /// kitti-like (background + movers, 20 scenes), hopef (HOPE-F's own
     /// process, 4 x 1000 scenes with train/val/test folders), kitti-real
     /// (1242 x 375 driving scenes of 1000-5000 matches, 2 x 1000 scenes with
-    /// train/val/test folders) or adelaide-like (HOPE-F's process at
+    /// train/val/test folders), adelaide-like (HOPE-F's process at
     /// AdelaideRMF's image size, outlier shares and inliers per motion,
-    /// 4 x 1000 scenes with train/val/test folders).
+    /// 4 x 1000 scenes with train/val/test folders), driving-random
+    /// (kitti-real's scenes with N 200-20 000, 0-3 movers 0.5-20 px from the
+    /// background's epipolar geometry, drawn per scene; 1000 scenes with
+    /// train/val/test folders) or objects-3d (1-5 general 3-D objects
+    /// turning about any axis, N 100-3000; 1000 scenes with train/val/test
+    /// folders).
     #[arg(long, default_value = "hopef-like")]
     pub preset: String,
     /// Output directory (created; must be empty unless --force).
