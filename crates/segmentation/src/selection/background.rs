@@ -64,8 +64,6 @@ pub struct Background {
     slopes: Vec<f64>,
     /// `prefix[i]` = sum of the `i` smallest slopes.
     prefix: Vec<f64>,
-    /// Prototype: sorted Sampson distances of the scene's mismatched pairs.
-    perm: Option<(Vec<f64>, bool)>,
 }
 
 impl Background {
@@ -102,43 +100,7 @@ impl Background {
             }
             prefix.push(sum);
         }
-        Self {
-            slopes,
-            prefix,
-            perm: None,
-        }
-    }
-
-    /// Prototype (SCTL_PROTO_PERM=alone|max): the share of 65536 of the
-    /// scene's mismatched pairs (x1_i, x2_j), i != j, within eps, alone or
-    /// with the integral's p as a floor.
-    pub fn with_scene_pairs(
-        mut self,
-        f: &Matrix3<f64>,
-        points: &geometry::Correspondences,
-    ) -> Self {
-        let Ok(mode) = std::env::var("SCTL_PROTO_PERM") else {
-            return self;
-        };
-        let n = points.len();
-        if n < 2 {
-            return self;
-        }
-        let pairs = 65536usize;
-        let step = ((n as f64) * 0.618_033_988_749_894_9).floor() as usize;
-        let mut d: Vec<f64> = (0..pairs)
-            .map(|k| {
-                let i = (k * 7919) % n;
-                let mut j = (i + 1 + (k * step + k / n) % (n - 1)) % n;
-                if j == i {
-                    j = (i + 1) % n;
-                }
-                geometry::sampson_distance(f, points.point1(i), points.point2(j))
-            })
-            .collect();
-        d.sort_by(f64::total_cmp);
-        self.perm = Some((d, mode == "max"));
-        self
+        Self { slopes, prefix }
     }
 
     /// `p(ε) = mean over x₁ of min(1, ε c(x₁))`.
@@ -146,18 +108,6 @@ impl Background {
         if eps_px <= 0.0 {
             return 0.0;
         }
-        if let Some((d, floor)) = &self.perm {
-            let share = d.partition_point(|&x| x <= eps_px) as f64 / d.len() as f64;
-            return if *floor {
-                share.max(self.integral(eps_px))
-            } else {
-                share
-            };
-        }
-        self.integral(eps_px)
-    }
-
-    fn integral(&self, eps_px: f64) -> f64 {
         let below = self.slopes.partition_point(|&c| eps_px * c < 1.0);
         let p = eps_px * self.prefix[below] + (self.slopes.len() - below) as f64;
         (p / self.slopes.len() as f64).min(1.0)

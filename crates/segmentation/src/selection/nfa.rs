@@ -291,7 +291,7 @@ fn fit_given<'a>(
         let fit = refit(points, &own, irls).map(|f| GroupFit {
             f,
             residuals: sampson_residuals(points, &f),
-            background: Background::new(&f, image_size).with_scene_pairs(&f, points),
+            background: Background::new(&f, image_size),
         });
         *cache = Some(Cached { own: own_len, fit });
     }
