@@ -123,7 +123,7 @@ fn slope(f: &Matrix3<f64>, ft: &Matrix3<f64>, x1: &Vector3<f64>, w: f64, h: f64)
     if g1.is_nan() || g1 <= f64::MIN_POSITIVE {
         return f64::INFINITY;
     }
-    let Some((p, q)) = clip(&l, w / 2.0, h / 2.0) else {
+    let Some((p, q)) = clip(&l, g1, w / 2.0, h / 2.0) else {
         return 0.0;
     };
     let (mid, half) = ((p + q) / 2.0, (q - p) / 2.0);
@@ -142,16 +142,16 @@ fn slope(f: &Matrix3<f64>, ft: &Matrix3<f64>, x1: &Vector3<f64>, w: f64, h: f64)
     2.0 * integral / (w * h)
 }
 
-/// The segment of the line `l` (`l · (x, y, 1) = 0`) inside the rectangle
-/// `[−hw, hw] × [−hh, hh]`, or None when it misses it.
+/// The segment of the line `l` (`l · (x, y, 1) = 0`, `g = l₁² + l₂² > 0`)
+/// inside the rectangle `[−hw, hw] × [−hh, hh]`, or None when it misses it.
 fn clip(
     l: &Vector3<f64>,
+    g: f64,
     hw: f64,
     hh: f64,
 ) -> Option<(nalgebra::Vector2<f64>, nalgebra::Vector2<f64>)> {
     use nalgebra::Vector2;
     // A point on the line and its direction.
-    let g = l.x * l.x + l.y * l.y;
     let origin = Vector2::new(-l.x * l.z / g, -l.y * l.z / g);
     let dir = Vector2::new(-l.y, l.x) / g.sqrt();
     // Liang–Barsky: the interval of t with origin + t dir inside.
