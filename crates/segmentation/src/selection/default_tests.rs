@@ -90,6 +90,7 @@ fn pure_outliers_beyond_the_subset_give_few_false_motions() {
         .flat_map(|n| (1..=10).map(move |seed| (n, seed)))
         .map(|(n, seed)| default_labels(&pure_outliers(n, seed)).1)
         .sum();
+    eprintln!("{false_motions} false motions in 30 scenes");
     assert!(
         false_motions <= 7,
         "{false_motions} false motions in 30 scenes"
