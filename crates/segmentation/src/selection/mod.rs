@@ -20,6 +20,7 @@ mod default_tests;
 pub mod nfa;
 #[cfg(test)]
 mod tests;
+mod union;
 
 pub use background::Background;
 pub use binomial::ln_binomial_tail;
@@ -191,7 +192,12 @@ fn by_nfa(
     thr_px: f64,
     irls: &IrlsParams,
 ) -> Vec<i32> {
-    let detections = nfa::detect(points, groups, image_size, thr_px, irls);
+    let mut detections = nfa::detect(points, groups, image_size, thr_px, irls);
+    if std::env::var("SCTL_PROTO_UNION").is_ok() && detections.len() > 1 {
+        let ln_tests = nfa::ln_tests(groups, points.len());
+        detections =
+            union::merge_detections(points, detections, image_size, thr_px, ln_tests, irls);
+    }
     let residuals: Vec<&Vec<f64>> = detections.iter().map(|d| &d.residuals).collect();
     let nearest = |m: usize| {
         residuals
@@ -213,8 +219,9 @@ fn by_nfa(
         }
     }
     for (d, det) in detections.iter().enumerate() {
-        groups[det.group]
+        det.groups
             .iter()
+            .flat_map(|&g| &groups[g])
             .for_each(|&m| assigned[m] = d as i32);
     }
     renumber(&assigned)
