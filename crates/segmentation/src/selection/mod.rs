@@ -20,7 +20,6 @@ mod default_tests;
 pub mod nfa;
 #[cfg(test)]
 mod tests;
-mod union;
 
 pub use background::Background;
 pub use binomial::ln_binomial_tail;
@@ -192,12 +191,7 @@ fn by_nfa(
     thr_px: f64,
     irls: &IrlsParams,
 ) -> Vec<i32> {
-    let mut detections = nfa::detect(points, groups, image_size, thr_px, irls);
-    if std::env::var("SCTL_PROTO_UNION").is_ok() && detections.len() > 1 {
-        let ln_tests = nfa::ln_tests(groups, points.len());
-        detections =
-            union::merge_detections(points, detections, image_size, thr_px, ln_tests, irls);
-    }
+    let detections = nfa::detect(points, groups, image_size, thr_px, irls);
     let residuals: Vec<&Vec<f64>> = detections.iter().map(|d| &d.residuals).collect();
     let nearest = |m: usize| {
         residuals
@@ -219,9 +213,8 @@ fn by_nfa(
         }
     }
     for (d, det) in detections.iter().enumerate() {
-        det.groups
+        groups[det.group]
             .iter()
-            .flat_map(|&g| &groups[g])
             .for_each(|&m| assigned[m] = d as i32);
     }
     renumber(&assigned)

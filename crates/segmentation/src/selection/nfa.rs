@@ -98,9 +98,8 @@ pub fn significance(
 /// A group of matches detected as a motion.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Detection {
-    /// Indices of its groups in the input: one, or more when
-    /// [`super::union::merge_detections`] joined detections.
-    pub groups: Vec<usize>,
+    /// Index of the group in the input.
+    pub group: usize,
     /// Its F, refitted by IRLS-Tukey on its matches not explained by the
     /// detections before it.
     pub f: Matrix3<f64>,
@@ -142,7 +141,7 @@ pub fn detect(
     if remaining.is_empty() || n <= FITTED_MATCHES {
         return Vec::new();
     }
-    let ln_tests = ln_tests(groups, n);
+    let ln_tests = (remaining.len() as f64).ln() + ((n - FITTED_MATCHES) as f64).ln();
     let mut explained = Explained(vec![false; n]);
     let mut fits: Vec<Option<Cached>> = groups.iter().map(|_| None).collect();
     let mut detections = Vec::new();
@@ -178,20 +177,13 @@ pub fn detect(
             polish_on_support(points, fit.f, fit.residuals, &explained, thr_px, irls);
         explained.add(&residuals, thr_px);
         detections.push(Detection {
-            groups: vec![group],
+            group,
             f,
             significance,
             residuals,
         });
     }
     detections
-}
-
-/// `ln(G · (N − 7))`: G groups of at least 8 matches among `n`, N − 7
-/// thresholds each ([`detect`]'s number of tests).
-pub fn ln_tests(groups: &[Vec<usize>], n: usize) -> f64 {
-    let g = groups.iter().filter(|g| g.len() > FITTED_MATCHES).count();
-    (g as f64).ln() + ((n - FITTED_MATCHES) as f64).ln()
 }
 
 /// Rounds of [`polish_on_support`].
