@@ -213,11 +213,12 @@ impl Anatomy {
             return;
         };
         let points = points.shifted(pp, pp);
+        let image = nfa::ImageRect::new(m.image_size, pp);
         let k = scene.num_motions();
         let groups: Vec<Vec<usize>> = (1..=k as i32)
             .map(|t| (0..truth.len()).filter(|&i| truth[i] == t).collect())
             .collect();
-        let Ok(selected) = select_groups(&points, &groups, m.image_size, thr_px) else {
+        let Ok(selected) = select_groups(&points, &groups, image, thr_px) else {
             return;
         };
         self.scenes += 1;
@@ -232,12 +233,7 @@ impl Anatomy {
             sampson_distances_squared(&f, &points, &mut r);
             let mut r: Vec<f64> = r.iter().map(|v| v.sqrt()).collect();
             r.sort_by(f64::total_cmp);
-            let s = nfa::significance(
-                &r,
-                ln_tests,
-                &nfa::Background::new(&f, m.image_size),
-                thr_px,
-            );
+            let s = nfa::significance(&r, ln_tests, &nfa::Background::new(&f, &image), thr_px);
             self.true_motions += 1;
             self.true_f_not_significant += usize::from(!s.is_significant());
         }

@@ -4,7 +4,7 @@
 use crate::assignment::members;
 use crate::memory_guard::{memory_limit, ASSUMED_PREFERENCE_DENSITY};
 use crate::merge::inlier_words;
-use crate::selection::select_groups;
+use crate::selection::{select_groups, ImageRect};
 use crate::{
     available_memory, centred_points, check_available_memory, check_matches,
     estimate_hypothesis_focals, extend_labels, focal_filter, generate_hypotheses_cancellable,
@@ -294,7 +294,8 @@ fn cluster_kept(
         // The clusters, every match labelled, are the selection's groups.
         let groups = members(&labels, clusters);
         let thr = params.refinement.thr_px;
-        let selected = select_groups(&all_points, &groups, matches.image_size, thr)?;
+        let image = ImageRect::new(matches.image_size, matches.principal_point);
+        let selected = select_groups(&all_points, &groups, image, thr)?;
         (selected.labels, selected.motions)
     } else {
         (labels, clusters)

@@ -56,6 +56,62 @@ const GL_WEIGHTS: [f64; 8] = [
     0.101_228_536_290_376_3,
 ];
 
+/// The image in the principal-point-centred frame of the matches: the
+/// rectangle `[min₀, max₀] × [min₁, max₁]`, px. The background draws `x₁`
+/// and `x₂` uniformly over it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ImageRect {
+    /// Its smallest coordinates (left, top).
+    pub min: [f64; 2],
+    /// Its largest coordinates (right, bottom).
+    pub max: [f64; 2],
+}
+
+impl ImageRect {
+    /// An image of `size` (W, H) px whose principal point lies at
+    /// `principal_point` (px, pixel centres at integers, so the image
+    /// spans `[−0.5, W − 0.5] × [−0.5, H − 0.5]`).
+    ///
+    /// ```
+    /// use segmentation::selection::ImageRect;
+    /// let r = ImageRect::new((640, 480), [100.0, 239.5]);
+    /// assert_eq!((r.min, r.max), ([-100.5, -240.0], [539.5, 240.0]));
+    /// assert_eq!(ImageRect::new((640, 480), [319.5, 239.5]), ImageRect::centred((640, 480)));
+    /// ```
+    pub fn new(size: (u32, u32), principal_point: [f64; 2]) -> Self {
+        let side = [f64::from(size.0), f64::from(size.1)];
+        Self {
+            min: [0, 1].map(|i| -0.5 - principal_point[i]),
+            max: [0, 1].map(|i| side[i] - 0.5 - principal_point[i]),
+        }
+    }
+
+    /// An image of `size` (W, H) px centred on its principal point:
+    /// `[−W/2, W/2] × [−H/2, H/2]`.
+    pub fn centred(size: (u32, u32)) -> Self {
+        let half = [f64::from(size.0) / 2.0, f64::from(size.1) / 2.0];
+        Self {
+            min: half.map(|v| -v),
+            max: half,
+        }
+    }
+
+    /// Width and height, px.
+    pub fn sides(&self) -> [f64; 2] {
+        [self.max[0] - self.min[0], self.max[1] - self.min[1]]
+    }
+
+    /// Finite, with sides > 0.
+    pub fn is_valid(&self) -> bool {
+        let finite = self.min.iter().chain(&self.max).all(|v| v.is_finite());
+        finite && self.sides().iter().all(|&s| s > 0.0)
+    }
+
+    fn centre(&self) -> [f64; 2] {
+        [0, 1].map(|i| (self.min[i] + self.max[i]) / 2.0)
+    }
+}
+
 /// `p(ε)` of one F: the band slopes `c(x₁)` of 4096 points x₁,
 /// sorted, with their prefix sums.
 #[derive(Debug, Clone)]
@@ -67,11 +123,12 @@ pub struct Background {
 }
 
 impl Background {
-    /// The background of `f` for images of `image_size` (W, H), points
-    /// centred on the image centre. An `f` of zero or non-finite norm
-    /// explains every match (`p = 1`).
-    pub fn new(f: &Matrix3<f64>, image_size: (u32, u32)) -> Self {
-        let (w, h) = (f64::from(image_size.0), f64::from(image_size.1));
+    /// The background of `f` for two images covering `image` (in the
+    /// matches' principal-point-centred frame). An `f` of zero or
+    /// non-finite norm explains every match (`p = 1`).
+    pub fn new(f: &Matrix3<f64>, image: &ImageRect) -> Self {
+        let [w, h] = image.sides();
+        let centre = image.centre();
         let norm = f.norm();
         let degenerate = !(norm.is_finite() && norm > 0.0);
         let f = if degenerate {
@@ -86,8 +143,12 @@ impl Background {
         let mut slopes: Vec<f64> = (1..=X1_SAMPLES)
             .map(|i| {
                 let u = alpha.map(|a| (0.5 + a * i as f64).fract());
-                let x1 = Vector3::new((u[0] - 0.5) * w, (u[1] - 0.5) * h, 1.0);
-                slope(&f, &ft, &x1, w, h)
+                let x1 = Vector3::new(
+                    centre[0] + (u[0] - 0.5) * w,
+                    centre[1] + (u[1] - 0.5) * h,
+                    1.0,
+                );
+                slope(&f, &ft, &x1, image)
             })
             .collect();
         slopes.sort_by(f64::total_cmp);
@@ -117,13 +178,13 @@ impl Background {
 /// `c(x₁)`: `(2 / A) ∫ √(1 + g₂(s) / g₁) ds` along the part of the
 /// epipolar line of `x₁` inside the image (0 when it misses the image,
 /// `+∞` when `x₁` is the epipole).
-fn slope(f: &Matrix3<f64>, ft: &Matrix3<f64>, x1: &Vector3<f64>, w: f64, h: f64) -> f64 {
+fn slope(f: &Matrix3<f64>, ft: &Matrix3<f64>, x1: &Vector3<f64>, image: &ImageRect) -> f64 {
     let l = f * x1;
     let g1 = l.x * l.x + l.y * l.y;
     if g1.is_nan() || g1 <= f64::MIN_POSITIVE {
         return f64::INFINITY;
     }
-    let Some((p, q)) = clip(&l, g1, w / 2.0, h / 2.0) else {
+    let Some((p, q)) = clip(&l, g1, image) else {
         return 0.0;
     };
     let (mid, half) = ((p + q) / 2.0, (q - p) / 2.0);
@@ -139,16 +200,16 @@ fn slope(f: &Matrix3<f64>, ft: &Matrix3<f64>, x1: &Vector3<f64>, w: f64, h: f64)
         .sum::<f64>()
         * length
         / 2.0;
+    let [w, h] = image.sides();
     2.0 * integral / (w * h)
 }
 
 /// The segment of the line `l` (`l · (x, y, 1) = 0`, `g = l₁² + l₂² > 0`)
-/// inside the rectangle `[−hw, hw] × [−hh, hh]`, or None when it misses it.
+/// inside `image`, or None when it misses it.
 fn clip(
     l: &Vector3<f64>,
     g: f64,
-    hw: f64,
-    hh: f64,
+    image: &ImageRect,
 ) -> Option<(nalgebra::Vector2<f64>, nalgebra::Vector2<f64>)> {
     use nalgebra::Vector2;
     // A point on the line and its direction.
@@ -156,14 +217,15 @@ fn clip(
     let dir = Vector2::new(-l.y, l.x) / g.sqrt();
     // Liang–Barsky: the interval of t with origin + t dir inside.
     let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
-    for (o, d, bound) in [(origin.x, dir.x, hw), (origin.y, dir.y, hh)] {
+    for (o, d, i) in [(origin.x, dir.x, 0), (origin.y, dir.y, 1)] {
+        let (low, high) = (image.min[i], image.max[i]);
         if d.abs() < 1e-15 {
-            if o.abs() > bound {
+            if o < low || o > high {
                 return None;
             }
             continue;
         }
-        let (a, b) = ((-bound - o) / d, (bound - o) / d);
+        let (a, b) = ((low - o) / d, (high - o) / d);
         lo = lo.max(a.min(b));
         hi = hi.min(a.max(b));
     }
@@ -177,10 +239,10 @@ mod tests {
     use rand_chacha::ChaCha8Rng;
 
     /// The share of `pairs` uniform random matches within `eps` of `f`.
-    fn monte_carlo(f: &Matrix3<f64>, size: (u32, u32), eps: f64, pairs: usize) -> f64 {
-        let (w, h) = (f64::from(size.0), f64::from(size.1));
+    fn monte_carlo(f: &Matrix3<f64>, image: &ImageRect, eps: f64, pairs: usize) -> f64 {
+        let (side, centre) = (image.sides(), image.centre());
         let mut rng = ChaCha8Rng::seed_from_u64(7);
-        let mut point = || [rng.gen_range(-0.5..0.5) * w, rng.gen_range(-0.5..0.5) * h];
+        let mut point = || [0, 1].map(|i| centre[i] + rng.gen_range(-0.5..0.5) * side[i]);
         let within = (0..pairs)
             .filter(|_| geometry::sampson_distance(f, point(), point()) <= eps)
             .count();
@@ -191,19 +253,26 @@ mod tests {
         Matrix3::new(0.0, -t[2], t[1], t[2], 0.0, -t[0], -t[1], t[0], 0.0)
     }
 
-    #[test]
-    fn the_band_integral_agrees_with_monte_carlo() {
-        let size = (640, 480);
+    /// The forward motion's F and the other two of the test below.
+    fn fundamentals() -> Vec<([f64; 3], Matrix3<f64>)> {
         let k = Matrix3::new(500.0, 0.0, 0.0, 0.0, 500.0, 0.0, 0.0, 0.0, 1.0);
         let ki = k.try_inverse().unwrap();
         let r = nalgebra::Rotation3::from_euler_angles(0.05, -0.1, 0.02).into_inner();
         // Epipoles far outside, inside, and a forward motion (epipole at
         // the centre).
-        for t in [[1.0, 0.1, 0.05], [0.2, 0.1, 1.0], [0.0, 0.0, 1.0]] {
-            let f = ki.transpose() * skew(t) * r * ki;
+        [[1.0, 0.1, 0.05], [0.2, 0.1, 1.0], [0.0, 0.0, 1.0]]
+            .into_iter()
+            .map(|t| (t, ki.transpose() * skew(t) * r * ki))
+            .collect()
+    }
+
+    #[test]
+    fn the_band_integral_agrees_with_monte_carlo() {
+        let image = ImageRect::centred((640, 480));
+        for (t, f) in fundamentals() {
             for eps in [0.5, 1.0, 2.5] {
-                let mc = monte_carlo(&f, size, eps, 2_000_000);
-                let band = Background::new(&f, size).probability(eps);
+                let mc = monte_carlo(&f, &image, eps, 2_000_000);
+                let band = Background::new(&f, &image).probability(eps);
                 // The figures of results/notes/selection.md (--nocapture).
                 eprintln!("t {t:?} eps {eps}: integral {band:.5}, Monte Carlo {mc:.5}");
                 // Binomial noise of the Monte Carlo share: ≤ 2 % (2 sd);
@@ -217,10 +286,38 @@ mod tests {
     }
 
     #[test]
+    fn an_off_centre_principal_point_moves_the_domain() {
+        // The principal point 40 px from the top-left corner: the forward
+        // motion's epipole (the principal point) lies near that corner
+        // instead of at the image's centre.
+        let image = ImageRect::new((640, 480), [39.5, 39.5]);
+        let centred = ImageRect::centred((640, 480));
+        let k = Matrix3::new(500.0, 0.0, 0.0, 0.0, 500.0, 0.0, 0.0, 0.0, 1.0);
+        let ki = k.try_inverse().unwrap();
+        // A forward motion whose epipole, 250 px left of and 200 px above
+        // the principal point, lies inside the centred image and outside
+        // this one.
+        let t = [-0.5, -0.4, 1.0];
+        let corner = (t, ki.transpose() * skew(t) * ki);
+        for (t, f) in fundamentals().into_iter().chain([corner]) {
+            let eps = 1.0;
+            let mc = monte_carlo(&f, &image, eps, 2_000_000);
+            let band = Background::new(&f, &image).probability(eps);
+            let wrong = Background::new(&f, &centred).probability(eps);
+            eprintln!("t {t:?}: integral {band:.5}, Monte Carlo {mc:.5}, centred {wrong:.5}");
+            assert!((band / mc - 1.0).abs() < 0.03, "t {t:?}: {band} vs {mc}");
+            if t == [-0.5, -0.4, 1.0] {
+                // The domain matters: the centred one is far off.
+                assert!((wrong / mc - 1.0).abs() > 0.1, "t {t:?}: {wrong} vs {mc}");
+            }
+        }
+    }
+
+    #[test]
     fn p_is_zero_at_zero_grows_with_eps_and_is_one_for_a_zero_f() {
-        let size = (640, 480);
+        let image = ImageRect::centred((640, 480));
         let f = Matrix3::new(0.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0);
-        let bg = Background::new(&f, size);
+        let bg = Background::new(&f, &image);
         assert_eq!(bg.probability(0.0), 0.0);
         let ps: Vec<f64> = [0.5, 1.0, 2.0, 50.0, 1e6]
             .map(|e| bg.probability(e))
@@ -232,7 +329,7 @@ mod tests {
         // an eps wider than the image covers it.
         assert_eq!(ps[4], 1.0);
         for zero in [Matrix3::zeros(), Matrix3::from_element(f64::NAN)] {
-            assert_eq!(Background::new(&zero, size).probability(0.1), 1.0);
+            assert_eq!(Background::new(&zero, &image).probability(0.1), 1.0);
         }
     }
 }

@@ -9,7 +9,8 @@
 //!
 //! Matches of no motion are outliers. Pure functions of the matches
 //! (principal-point-centred, as [`crate::segment`] uses them), the
-//! clustering's labels or groups, the image size and `thr_px`; every
+//! clustering's labels or groups, the image's rectangle in that frame
+//! ([`ImageRect`]) and `thr_px`; every
 //! cluster's F is refitted here by IRLS-Tukey (docs/method.md, Algorithm 1
 //! step 3; [`CLUSTER_REFIT_ITERS`] iterations) on its matches alone.
 
@@ -21,7 +22,7 @@ pub mod nfa;
 #[cfg(test)]
 mod tests;
 
-pub use background::Background;
+pub use background::{Background, ImageRect};
 pub use binomial::ln_binomial_tail;
 
 use geometry::{sampson_distances_squared, Correspondences, IrlsParams, IrlsWorkspace};
@@ -62,9 +63,10 @@ pub enum SelectionError {
     /// `thr_px` not finite and positive.
     #[error("selection: thr_px must be a finite number > 0, got {0}")]
     BadThreshold(f64),
-    /// An image side of zero pixels.
-    #[error("selection: image size {0} x {1} has a zero side")]
-    BadImageSize(u32, u32),
+    /// An image rectangle with a side of zero (or negative, or not finite)
+    /// length: an image with a zero side, or a principal point not finite.
+    #[error("selection: the image spans [{}, {}] x [{}, {}] px around the principal point, which has no area", .0.min[0], .0.max[0], .0.min[1], .0.max[1])]
+    BadImage(ImageRect),
 }
 
 /// The clusters that are motions.
@@ -97,24 +99,25 @@ fn refit_params(thr_px: f64) -> IrlsParams {
 
 /// Motions and outliers from the clustering's `labels` (−1 outliers) of
 /// the principal-point-centred `points`: [`select_groups`] of the labels'
-/// clusters; `image_size` is (W, H) in px and `thr_px` the inlier threshold
-/// (the NFA's largest threshold and the refits' inlier bound).
+/// clusters; `image` is the images' rectangle in the points' frame (the
+/// background's domain) and `thr_px` the inlier threshold (the NFA's
+/// largest threshold and the refits' inlier bound).
 pub fn select(
     points: &Correspondences,
     labels: &[i32],
-    image_size: (u32, u32),
+    image: ImageRect,
     thr_px: f64,
 ) -> Result<Selection, SelectionError> {
-    check(points, labels, image_size, thr_px)?;
+    check(points, labels, image, thr_px)?;
     let irls = refit_params(thr_px);
-    let labels = by_nfa(points, &groups_of(labels), image_size, thr_px, &irls);
+    let labels = by_nfa(points, &groups_of(labels), image, thr_px, &irls);
     Ok(Selection::of(labels))
 }
 
 fn check(
     points: &Correspondences,
     labels: &[i32],
-    image_size: (u32, u32),
+    image: ImageRect,
     thr_px: f64,
 ) -> Result<(), SelectionError> {
     if labels.len() != points.len() {
@@ -126,15 +129,15 @@ fn check(
     if let Some((index, &label)) = labels.iter().enumerate().find(|(_, &l)| l < -1) {
         return Err(SelectionError::BadLabel { index, label });
     }
-    check_scene(image_size, thr_px)
+    check_scene(image, thr_px)
 }
 
-fn check_scene(image_size: (u32, u32), thr_px: f64) -> Result<(), SelectionError> {
+fn check_scene(image: ImageRect, thr_px: f64) -> Result<(), SelectionError> {
     if !(thr_px.is_finite() && thr_px > 0.0) {
         return Err(SelectionError::BadThreshold(thr_px));
     }
-    if image_size.0 == 0 || image_size.1 == 0 {
-        return Err(SelectionError::BadImageSize(image_size.0, image_size.1));
+    if !image.is_valid() {
+        return Err(SelectionError::BadImage(image));
     }
     Ok(())
 }
@@ -152,17 +155,17 @@ fn check_scene(image_size: (u32, u32), thr_px: f64) -> Result<(), SelectionError
 ///
 /// ```
 /// use geometry::Correspondences;
-/// use segmentation::selection::select_groups;
+/// use segmentation::selection::{select_groups, ImageRect};
 /// // No group: no motion, every match an outlier.
 /// let p = [[0.0, 0.0]; 20];
 /// let pts = Correspondences::new(&p, &p).unwrap();
-/// let s = select_groups(&pts, &[], (640, 480), 2.5).unwrap();
+/// let s = select_groups(&pts, &[], ImageRect::centred((640, 480)), 2.5).unwrap();
 /// assert_eq!((s.motions, s.labels), (0, vec![-1; 20]));
 /// ```
 pub fn select_groups(
     points: &Correspondences,
     groups: &[Vec<usize>],
-    image_size: (u32, u32),
+    image: ImageRect,
     thr_px: f64,
 ) -> Result<Selection, SelectionError> {
     if let Some(&index) = groups.iter().flatten().find(|&&m| m >= points.len()) {
@@ -171,9 +174,9 @@ pub fn select_groups(
             points: points.len(),
         });
     }
-    check_scene(image_size, thr_px)?;
+    check_scene(image, thr_px)?;
     let irls = refit_params(thr_px);
-    let labels = by_nfa(points, groups, image_size, thr_px, &irls);
+    let labels = by_nfa(points, groups, image, thr_px, &irls);
     Ok(Selection::of(labels))
 }
 
@@ -187,11 +190,11 @@ pub fn select_groups(
 fn by_nfa(
     points: &Correspondences,
     groups: &[Vec<usize>],
-    image_size: (u32, u32),
+    image: ImageRect,
     thr_px: f64,
     irls: &IrlsParams,
 ) -> Vec<i32> {
-    let detections = nfa::detect(points, groups, image_size, thr_px, irls);
+    let detections = nfa::detect(points, groups, &image, thr_px, irls);
     let residuals: Vec<&Vec<f64>> = detections.iter().map(|d| &d.residuals).collect();
     let nearest = |m: usize| {
         residuals

@@ -9,7 +9,7 @@
 //! testing the next (Rabin, Delon, Gousseau & Moisan, "MAC-RANSAC: a robust
 //! algorithm for the recognition of multiple objects", 3DPVT 2010).
 
-pub use super::background::Background;
+pub use super::background::{Background, ImageRect};
 use super::binomial::ln_binomial_tail;
 use super::{refit, sampson_residuals};
 use geometry::{Correspondences, IrlsParams};
@@ -130,7 +130,7 @@ pub struct Detection {
 pub fn detect(
     points: &Correspondences,
     groups: &[Vec<usize>],
-    image_size: (u32, u32),
+    image: &ImageRect,
     thr_px: f64,
     irls: &IrlsParams,
 ) -> Vec<Detection> {
@@ -150,14 +150,7 @@ pub fn detect(
             .iter()
             .enumerate()
             .filter_map(|(pos, &i)| {
-                let fit = fit_given(
-                    points,
-                    &groups[i],
-                    &explained,
-                    irls,
-                    image_size,
-                    &mut fits[i],
-                )?;
+                let fit = fit_given(points, &groups[i], &explained, irls, image, &mut fits[i])?;
                 let significance = fit.significance(&explained, ln_tests, thr_px);
                 Some((pos, i, significance))
             })
@@ -277,7 +270,7 @@ fn fit_given<'a>(
     group: &[usize],
     explained: &Explained,
     irls: &IrlsParams,
-    image_size: (u32, u32),
+    image: &ImageRect,
     cache: &'a mut Option<Cached>,
 ) -> Option<&'a GroupFit> {
     let counts = |m: &usize| !explained.0[*m];
@@ -291,7 +284,7 @@ fn fit_given<'a>(
         let fit = refit(points, &own, irls).map(|f| GroupFit {
             f,
             residuals: sampson_residuals(points, &f),
-            background: Background::new(&f, image_size),
+            background: Background::new(&f, image),
         });
         *cache = Some(Cached { own: own_len, fit });
     }
@@ -304,14 +297,14 @@ mod tests {
 
     #[test]
     fn exact_support_is_meaningful_and_chance_support_is_not() {
-        let size = (640, 480);
+        let image = ImageRect::centred((640, 480));
         // 100 matches at 0.1 px among 1000 spread up to 100 px: meaningful.
         let mut r: Vec<f64> = (0..1000).map(|i| 0.1 * i as f64).collect();
         r[..100].iter_mut().for_each(|v| *v = 0.1);
         r.sort_by(f64::total_cmp);
         let bg = Background::new(
             &Matrix3::new(0.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0),
-            size,
+            &image,
         );
         let s = significance(&r, (1000f64).ln(), &bg, 2.5);
         assert!(s.is_significant() && s.support >= 100, "{s:?}");

@@ -13,6 +13,11 @@ pub(super) const FOCAL: f64 = 700.0;
 pub(super) const NOISE_PX: f64 = 0.5;
 pub(super) const THR_PX: f64 = 2.5;
 
+/// The images of [`SIZE`], centred on the principal point.
+pub(super) fn image() -> ImageRect {
+    ImageRect::centred(SIZE)
+}
+
 /// A rigid motion of points between the two views, x₂ = R x₁ + t, of
 /// points at depths in `depth` (in units of the baseline scale).
 #[derive(Clone, Copy)]
@@ -229,7 +234,7 @@ fn two_clusters_of_one_motion_in_different_regions_are_one() {
             }
         })
         .collect();
-    let sel = select(&s.points(), &labels, SIZE, THR_PX).unwrap();
+    let sel = select(&s.points(), &labels, image(), THR_PX).unwrap();
     assert_eq!(sel.motions, 1);
 }
 
@@ -245,7 +250,7 @@ fn two_motions_with_different_fs_in_different_regions_stay_two() {
         (20.0, 300.0),
     );
     let labels = clustering(&s.truth, 1, 0);
-    let sel = select(&s.points(), &labels, SIZE, THR_PX).unwrap();
+    let sel = select(&s.points(), &labels, image(), THR_PX).unwrap();
     assert_eq!(sel.motions, 2);
 }
 
@@ -274,12 +279,12 @@ fn a_mover_of_two_percent_at_three_px_survives_the_nfa() {
     for n in [2000, 20_000] {
         let s = small_mover(n, 3);
         let labels = clustering(&s.truth, 1, 0);
-        let sel = select(&s.points(), &labels, SIZE, THR_PX).unwrap();
+        let sel = select(&s.points(), &labels, image(), THR_PX).unwrap();
         assert_eq!(sel.motions, 2, "N {n}");
         assert!(kept_together(&s.truth, &sel.labels, 1) > 0.9, "N {n}");
         // And with the background in 4 fragments and the outliers in clusters of 10.
         let labels = clustering(&s.truth, 4, 10);
-        let sel = select(&s.points(), &labels, SIZE, THR_PX).unwrap();
+        let sel = select(&s.points(), &labels, image(), THR_PX).unwrap();
         assert_eq!(sel.motions, 2, "N {n}, fragments");
     }
 }
@@ -291,7 +296,7 @@ fn pure_outliers_give_no_motion() {
         // A clustering of the outliers into groups of 10, 20 and 40.
         for size in [10, 20, 40] {
             let labels: Vec<i32> = (0..n).map(|i| (i / size) as i32).collect();
-            let sel = select(&s.points(), &labels, SIZE, THR_PX).unwrap();
+            let sel = select(&s.points(), &labels, image(), THR_PX).unwrap();
             assert_eq!(sel.motions, 0, "N {n}, groups of {size}");
             assert!(sel.labels.iter().all(|&l| l == -1));
         }
@@ -303,7 +308,7 @@ fn three_planted_motions_at_large_n_give_three() {
     let (s, _) = three_planted([12_000, 4000, 2000], 2000);
     // Each motion in 20 fragments, the outliers in clusters of 12.
     let labels = clustering(&s.truth, 20, 12);
-    let sel = select(&s.points(), &labels, SIZE, THR_PX).unwrap();
+    let sel = select(&s.points(), &labels, image(), THR_PX).unwrap();
     assert_eq!(sel.motions, 3);
     for t in 0..3 {
         assert!(kept_together(&s.truth, &sel.labels, t) > 0.95, "motion {t}");
@@ -315,21 +320,25 @@ fn bad_input_is_refused_by_name() {
     let p = pure_outliers(20, 6).points();
     let err = |labels: &[i32], size, thr| select(&p, labels, size, thr).unwrap_err().to_string();
     assert_eq!(
-        err(&[0; 19], SIZE, 2.5),
+        err(&[0; 19], image(), 2.5),
         "selection: 19 labels for 20 matches"
     );
     let mut labels = vec![0; 20];
     labels[7] = -3;
     assert_eq!(
-        err(&labels, SIZE, 2.5),
+        err(&labels, image(), 2.5),
         "selection: label -3 of match 7 is below -1 (the outlier label)"
     );
     assert_eq!(
-        err(&[0; 20], SIZE, f64::NAN),
+        err(&[0; 20], image(), f64::NAN),
         "selection: thr_px must be a finite number > 0, got NaN"
     );
     assert_eq!(
-        err(&[0; 20], (0, 480), 2.5),
-        "selection: image size 0 x 480 has a zero side"
+        err(&[0; 20], ImageRect::centred((0, 480)), 2.5),
+        "selection: the image spans [-0, 0] x [-240, 240] px around the principal point, which has no area"
+    );
+    assert_eq!(
+        err(&[0; 20], ImageRect::new(SIZE, [f64::NAN, 239.5]), 2.5),
+        "selection: the image spans [NaN, NaN] x [-240, 240] px around the principal point, which has no area"
     );
 }
