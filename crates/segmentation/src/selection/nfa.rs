@@ -168,13 +168,6 @@ pub fn detect(
             .expect("a scored group has its fit");
         let (f, residuals) =
             polish_on_support(points, fit.f, fit.residuals, &explained, thr_px, irls);
-        let (f, residuals) = if std::env::var("SCTL_PROTO_POLISH_NFA").is_ok() {
-            polish_while_meaningful(
-                points, f, residuals, &explained, thr_px, irls, ln_tests, image,
-            )
-        } else {
-            (f, residuals)
-        };
         explained.add(&residuals, thr_px);
         detections.push(Detection {
             group,
@@ -219,49 +212,6 @@ fn polish_on_support(
             }
             None => break,
         }
-    }
-    (f, residuals)
-}
-
-/// Prototype: more rounds of [`polish_on_support`] (at most 20) while each
-/// refit is more meaningful than the F before it (smaller NFA over the
-/// matches that count).
-#[allow(clippy::too_many_arguments)]
-fn polish_while_meaningful(
-    points: &Correspondences,
-    mut f: Matrix3<f64>,
-    mut residuals: Vec<f64>,
-    explained: &Explained,
-    thr_px: f64,
-    irls: &IrlsParams,
-    ln_tests: f64,
-    image: &ImageRect,
-) -> (Matrix3<f64>, Vec<f64>) {
-    let score = |f: &Matrix3<f64>, residuals: &[f64]| {
-        let fit = GroupFit {
-            f: *f,
-            residuals: residuals.to_vec(),
-            background: Background::new(f, image),
-        };
-        fit.significance(explained, ln_tests, thr_px).ln_nfa
-    };
-    let mut current = score(&f, &residuals);
-    for _ in 0..20 {
-        let support: Vec<usize> = residuals
-            .iter()
-            .enumerate()
-            .filter(|&(m, &r)| r <= thr_px && !explained.0[m])
-            .map(|(m, _)| m)
-            .collect();
-        let Some(next) = refit(points, &support, irls) else {
-            break;
-        };
-        let next_residuals = sampson_residuals(points, &next);
-        let next_score = score(&next, &next_residuals);
-        if next_score >= current {
-            break;
-        }
-        (f, residuals, current) = (next, next_residuals, next_score);
     }
     (f, residuals)
 }
