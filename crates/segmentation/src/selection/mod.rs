@@ -21,6 +21,7 @@ mod default_tests;
 pub mod nfa;
 #[cfg(test)]
 mod tests;
+mod vote;
 
 pub use background::{Background, ImageRect};
 pub use binomial::ln_binomial_tail;
@@ -186,7 +187,9 @@ pub fn select_groups(
 /// most of its matches: those it explains take its label, the others the
 /// detected F nearest to them within `thr_px`, or are outliers; a match of
 /// no group takes the detected F nearest to it within `thr_px`, or is an
-/// outlier.
+/// outlier. Last, a match labelled by the nearest F alone (its group, if
+/// any, did not bring it to that F) that several detected Fs explain takes
+/// the label of its neighbours among those ([`vote::vote_ambiguous`]).
 fn by_nfa(
     points: &Correspondences,
     groups: &[Vec<usize>],
@@ -196,6 +199,22 @@ fn by_nfa(
 ) -> Vec<i32> {
     let detections = nfa::detect(points, groups, &image, thr_px, irls);
     let residuals: Vec<&Vec<f64>> = detections.iter().map(|d| &d.residuals).collect();
+    let mut assigned = by_nearest_f(&residuals, points.len(), thr_px);
+    let mut held = vec![false; points.len()];
+    join_undetected_groups(groups, &residuals, thr_px, &mut assigned, &mut held);
+    for (d, det) in detections.iter().enumerate() {
+        for &m in &groups[det.group] {
+            assigned[m] = d as i32;
+            held[m] = true;
+        }
+    }
+    vote::vote_ambiguous(points, &residuals, &held, thr_px, &mut assigned);
+    renumber(&assigned)
+}
+
+/// Per match: the detection whose F (`residuals[d]`) is nearest within
+/// `thr_px`, or −1.
+fn by_nearest_f(residuals: &[&Vec<f64>], n: usize, thr_px: f64) -> Vec<i32> {
     let nearest = |m: usize| {
         residuals
             .iter()
@@ -204,7 +223,19 @@ fn by_nfa(
             .min_by(|a, b| a.1[m].total_cmp(&b.1[m]))
             .map_or(-1, |(d, _)| d as i32)
     };
-    let mut assigned: Vec<i32> = (0..points.len()).map(nearest).collect();
+    (0..n).map(nearest).collect()
+}
+
+/// Each group joins, as a whole, the detection that explains the most of
+/// its matches: those it explains take its label and are `held` (the
+/// clustering placed them).
+fn join_undetected_groups(
+    groups: &[Vec<usize>],
+    residuals: &[&Vec<f64>],
+    thr_px: f64,
+    assigned: &mut [i32],
+    held: &mut [bool],
+) {
     for g in groups {
         let explained = |r: &[f64]| g.iter().filter(|&&m| r[m] <= thr_px).count();
         let joined =
@@ -212,15 +243,12 @@ fn by_nfa(
         if let Some(d) = joined {
             g.iter()
                 .filter(|&&m| residuals[d][m] <= thr_px)
-                .for_each(|&m| assigned[m] = d as i32);
+                .for_each(|&m| {
+                    assigned[m] = d as i32;
+                    held[m] = true;
+                });
         }
     }
-    for (d, det) in detections.iter().enumerate() {
-        groups[det.group]
-            .iter()
-            .for_each(|&m| assigned[m] = d as i32);
-    }
-    renumber(&assigned)
 }
 
 /// The matches of each label ≥ 0, in label order, increasing.
