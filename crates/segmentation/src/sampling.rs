@@ -185,10 +185,11 @@ impl MinimalSampler {
 
 /// The `k` nearest points of `tree` to `p` other than `self_index`, nearest
 /// first and ties by index: every point as close as the `k`-th is fetched
-/// before the sort, so the list equals a brute-force one.
-fn nearest(
-    tree: &RTree<GeomWithData<[f64; 2], u32>>,
-    p: [f64; 2],
+/// before the sort, so the list equals a brute-force one. Points of any
+/// dimension (image 1 here; (x₁, y₁, x₂, y₂) in the selection's vote).
+pub(crate) fn nearest<P: rstar::Point<Scalar = f64>>(
+    tree: &RTree<GeomWithData<P, u32>>,
+    p: P,
     self_index: usize,
     k: usize,
 ) -> Vec<u32> {

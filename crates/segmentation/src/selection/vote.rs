@@ -114,20 +114,7 @@ fn nearest_neighbours(
     );
     voters
         .iter()
-        .map(|(m, _)| {
-            let mut found: Vec<(f64, u32)> = Vec::with_capacity(k + 1);
-            for (entry, d2) in tree.nearest_neighbor_iter_with_distance_2(&coords(*m)) {
-                if entry.data as usize == *m {
-                    continue;
-                }
-                if found.len() >= k && found.last().is_some_and(|&(last, _)| d2 > last) {
-                    break;
-                }
-                found.push((d2, entry.data));
-            }
-            found.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-            found.into_iter().take(k).map(|(_, i)| i).collect()
-        })
+        .map(|(m, _)| crate::sampling::nearest(&tree, coords(*m), *m, k))
         .collect()
 }
 
