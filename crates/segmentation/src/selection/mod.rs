@@ -202,10 +202,6 @@ fn by_nfa(
     let mut assigned = by_nearest_f(&residuals, points.len(), thr_px);
     let mut held = vec![false; points.len()];
     join_undetected_groups(groups, &residuals, thr_px, &mut assigned, &mut held);
-    if std::env::var("SCTL_PROTO_VOTE_ALL").is_ok() {
-        // Prototype: vote on every match no detected group holds.
-        held.iter_mut().for_each(|h| *h = false);
-    }
     for (d, det) in detections.iter().enumerate() {
         for &m in &groups[det.group] {
             assigned[m] = d as i32;
