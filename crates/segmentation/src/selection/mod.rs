@@ -16,6 +16,7 @@
 
 mod background;
 mod binomial;
+mod coherence;
 #[cfg(test)]
 mod default_tests;
 pub mod nfa;
