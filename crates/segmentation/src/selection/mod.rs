@@ -16,7 +16,6 @@
 
 mod background;
 mod binomial;
-mod coherence;
 #[cfg(test)]
 mod default_tests;
 pub mod nfa;

@@ -142,10 +142,6 @@ pub fn detect(
         return Vec::new();
     }
     let ln_tests = (remaining.len() as f64).ln() + ((n - FITTED_MATCHES) as f64).ln();
-    let space = std::env::var("SCTL_PROTO_SPATIAL")
-        .is_ok()
-        .then(|| super::coherence::Space::new(points));
-    let ln_groups = (remaining.len() as f64).ln();
     let mut explained = Explained(vec![false; n]);
     let mut fits: Vec<Option<Cached>> = groups.iter().map(|_| None).collect();
     let mut detections = Vec::new();
@@ -166,19 +162,6 @@ pub fn detect(
             break;
         }
         remaining.swap_remove(pos);
-        if let Some(space) = &space {
-            let fit = fits[group]
-                .as_ref()
-                .and_then(|c| c.fit.as_ref())
-                .expect("a scored group has its fit");
-            let support: Vec<usize> = (0..n)
-                .filter(|&m| !explained.0[m] && fit.residuals[m] <= thr_px)
-                .collect();
-            let lnfa = space.ln_nfa(&support, ln_groups);
-            if lnfa >= 0.0 {
-                continue;
-            }
-        }
         let fit = fits[group]
             .take()
             .and_then(|c| c.fit)
