@@ -208,19 +208,6 @@ fn by_nfa(
             held[m] = true;
         }
     }
-    if std::env::var("SCTL_PROTO_FAR").is_ok() {
-        // Prototype: a detected group's match beyond thr_px of its F that
-        // another detected F explains goes to the nearest such F.
-        let nearest = by_nearest_f(&residuals, points.len(), thr_px);
-        for (d, det) in detections.iter().enumerate() {
-            for &m in &groups[det.group] {
-                if residuals[d][m] > thr_px && nearest[m] >= 0 {
-                    assigned[m] = nearest[m];
-                    held[m] = false;
-                }
-            }
-        }
-    }
     vote::vote_ambiguous(points, &residuals, &held, thr_px, &mut assigned);
     renumber(&assigned)
 }
