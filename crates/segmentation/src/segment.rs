@@ -300,7 +300,6 @@ fn cluster_kept(
     } else {
         (labels, clusters)
     };
-    let (labels, clusters) = proto_stability(matches, params, cancel, labels, clusters)?;
     segmentation.clusters = cluster_models(&all_points, &labels, clusters);
     segmentation.timings.cluster_fit = t.elapsed().as_secs_f64();
     segmentation.clusters_before_filter = clustering.clusters_before_filter;
@@ -440,73 +439,4 @@ pub fn fit_cluster(points: &Correspondences, indices: &[usize]) -> Option<Matrix
         return None;
     }
     eight_point_normalized(&points.subset(indices).ok()?).ok()
-}
-
-thread_local! {
-    static IN_STABILITY_RUN: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
-}
-
-/// Prototype (SCTL_PROTO_STAB=1: only where a subset is clustered; 2:
-/// always): a motion is kept only when a second, independent run (another
-/// seed: other hypotheses and another subset) finds a motion whose matches
-/// overlap it with Jaccard >= 1/2; the matches of the others become outliers.
-fn proto_stability(
-    matches: &Matches,
-    params: &Params,
-    cancel: &Cancel,
-    labels: Vec<i32>,
-    motions: usize,
-) -> Result<(Vec<i32>, usize), SegmentationError> {
-    let mode = std::env::var("SCTL_PROTO_STAB").unwrap_or_default();
-    let subset_active = params.clustered_matches(matches.len()) < matches.len();
-    let wanted = (mode == "1" && subset_active) || mode == "2";
-    if !wanted
-        || motions == 0
-        || params.selection.final_assignment != FinalAssignment::Nfa
-        || IN_STABILITY_RUN.with(|f| f.get())
-    {
-        return Ok((labels, motions));
-    }
-    let mut other = params.clone();
-    other.sampling.seed = crate::splitmix64(params.sampling.seed ^ 0x5ab1_e5ab_1e5a_b1e5);
-    IN_STABILITY_RUN.with(|f| f.set(true));
-    let b = segment_cancellable(matches, &other, cancel);
-    IN_STABILITY_RUN.with(|f| f.set(false));
-    let b = b?;
-    let kb = b.clusters.len();
-    let mut inter = vec![vec![0usize; kb]; motions];
-    let mut size_a = vec![0usize; motions];
-    let mut size_b = vec![0usize; kb];
-    for (&la, &lb) in labels.iter().zip(&b.labels) {
-        if la >= 0 {
-            size_a[la as usize] += 1;
-        }
-        if lb >= 0 && (lb as usize) < kb {
-            size_b[lb as usize] += 1;
-        }
-        if la >= 0 && lb >= 0 && (lb as usize) < kb {
-            inter[la as usize][lb as usize] += 1;
-        }
-    }
-    let stable: Vec<bool> = (0..motions)
-        .map(|a| {
-            (0..kb).any(|d| {
-                let i = inter[a][d];
-                2 * i >= size_a[a] + size_b[d] - i
-            })
-        })
-        .collect();
-    let mut new_label = vec![-1i32; motions];
-    let mut next = 0;
-    for a in 0..motions {
-        if stable[a] {
-            new_label[a] = next;
-            next += 1;
-        }
-    }
-    let labels = labels
-        .iter()
-        .map(|&l| if l >= 0 { new_label[l as usize] } else { -1 })
-        .collect();
-    Ok((labels, next as usize))
 }
