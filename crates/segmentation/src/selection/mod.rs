@@ -3,7 +3,8 @@
 //! share of N, the merge's share of a cluster explained): a cluster is a
 //! motion when the number of false alarms of its F is below 1, given the
 //! motions detected before it ([`nfa::detect`]: Moisan & Stival 2004,
-//! AC-RANSAC 2012, MAC-RANSAC 2010). GRIC merges (Torr 1998), alone or
+//! AC-RANSAC 2012, MAC-RANSAC 2010) and its matches keep image-1
+//! neighbours near along the epipolar lines ([`coherence`]). GRIC merges (Torr 1998), alone or
 //! with the NFA, were measured and not adopted (results/README.md, "Tried
 //! and not adopted").
 //!
@@ -16,6 +17,7 @@
 
 mod background;
 mod binomial;
+pub mod coherence;
 #[cfg(test)]
 mod default_tests;
 pub mod nfa;

@@ -11,6 +11,7 @@
 
 pub use super::background::{Background, ImageRect};
 use super::binomial::ln_binomial_tail;
+use super::coherence::ln_incoherence;
 use super::{refit, sampson_residuals};
 use geometry::{Correspondences, IrlsParams};
 use nalgebra::Matrix3;
@@ -112,8 +113,10 @@ pub struct Detection {
 /// The groups (lists of match indices) that are motions, greedily, the
 /// most meaningful first (MAC-RANSAC's order): in each round every group
 /// not yet detected is scored given the detections so far, and the one of
-/// smallest NFA is detected when that NFA is below 1; otherwise the
-/// detection ends.
+/// smallest NFA is detected when that NFA is below 1 and its matches are
+/// coherent (image-1 neighbours stay neighbours along the epipolar lines,
+/// [`super::coherence`]; a group that is not is passed over for good);
+/// when the smallest NFA is not below 1 the detection ends.
 ///
 /// Given the detections, a match does not count (neither in n nor in k)
 /// when a detected F explains it: when it lies within `thr_px` of it (the
@@ -141,7 +144,8 @@ pub fn detect(
     if remaining.is_empty() || n <= FITTED_MATCHES {
         return Vec::new();
     }
-    let ln_tests = (remaining.len() as f64).ln() + ((n - FITTED_MATCHES) as f64).ln();
+    let ln_groups = (remaining.len() as f64).ln();
+    let ln_tests = ln_groups + ((n - FITTED_MATCHES) as f64).ln();
     let mut explained = Explained(vec![false; n]);
     let mut fits: Vec<Option<Cached>> = groups.iter().map(|_| None).collect();
     let mut detections = Vec::new();
@@ -166,6 +170,9 @@ pub fn detect(
             .take()
             .and_then(|c| c.fit)
             .expect("a scored group has its fit");
+        if !is_coherent(points, &groups[group], &explained, &fit.f, ln_groups) {
+            continue;
+        }
         let (f, residuals) =
             polish_on_support(points, fit.f, fit.residuals, &explained, thr_px, irls);
         explained.add(&residuals, thr_px);
@@ -177,6 +184,21 @@ pub fn detect(
         });
     }
     detections
+}
+
+/// Whether the matches of `group` that count map image-1 neighbours to
+/// neighbours along the epipolar lines of `f` beyond chance, given `G`
+/// groups tested (`ln_groups = ln G`): `G · P(R ≤ r) < 1`
+/// ([`ln_incoherence`], a rank sum).
+fn is_coherent(
+    points: &Correspondences,
+    group: &[usize],
+    explained: &Explained,
+    f: &Matrix3<f64>,
+    ln_groups: f64,
+) -> bool {
+    let own: Vec<usize> = group.iter().copied().filter(|&m| !explained.0[m]).collect();
+    ln_groups + ln_incoherence(points, &own, f) < 0.0
 }
 
 /// Rounds of [`polish_on_support`].
