@@ -186,7 +186,7 @@ param_keys! {
     clustering.size_rule: SizeRule, SizeRule, "min-size | { relative-min = f }",
         "clusters kept: min_cluster_size alone, or also >= ceil(f N) points";
     selection.final_assignment: FinalAssignment, Choice, "nfa | merge | none",
-        "nfa: the clusters whose F is significant (NFA < 1) are the motions; merge: 80 % rule";
+        "nfa: the clusters whose F is significant (NFA < 1) and whose matches are coherent along the epipolar lines are the motions; merge: 80 % rule";
     sampling.cluster_subset: usize, Int, "0 or >= mss_size",
         "> 0: steps 1-9 on this many random matches, the others joined after";
     selection.subset_extension: SubsetExtension, Choice, "preference-explained | preference",
