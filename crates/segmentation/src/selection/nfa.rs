@@ -149,17 +149,13 @@ pub fn detect(
     let mut explained = Explained(vec![false; n]);
     let mut fits: Vec<Option<Cached>> = groups.iter().map(|_| None).collect();
     let mut detections = Vec::new();
-    let joint = std::env::var("SCTL_PROTO_JOINT").is_ok_and(|v| v == "1");
     loop {
         let best = remaining
             .iter()
             .enumerate()
             .filter_map(|(pos, &i)| {
                 let fit = fit_given(points, &groups[i], &explained, irls, image, &mut fits[i])?;
-                let mut significance = fit.significance(&explained, ln_tests, thr_px);
-                if joint {
-                    significance.ln_nfa += fit.ln_coh;
-                }
+                let significance = fit.significance(&explained, ln_tests, thr_px);
                 Some((pos, i, significance))
             })
             .min_by(|a, b| a.2.ln_nfa.total_cmp(&b.2.ln_nfa).then(a.1.cmp(&b.1)));
@@ -263,8 +259,6 @@ struct GroupFit {
     /// Sampson distances (px) of every match to `f`.
     residuals: Vec<f64>,
     background: Background,
-    /// Prototype: `ln P(R ≤ r)` of the coherence test.
-    ln_coh: f64,
 }
 
 impl GroupFit {
@@ -309,13 +303,7 @@ fn fit_given<'a>(
     }
     if cache.as_ref().map(|c| c.own) != Some(own_len) {
         let own: Vec<usize> = group.iter().copied().filter(|m| counts(m)).collect();
-        let joint = std::env::var("SCTL_PROTO_JOINT").is_ok_and(|v| v == "1");
         let fit = refit(points, &own, irls).map(|f| GroupFit {
-            ln_coh: if joint {
-                ln_incoherence(points, &own, &f)
-            } else {
-                0.0
-            },
             f,
             residuals: sampson_residuals(points, &f),
             background: Background::new(&f, image),
