@@ -68,12 +68,17 @@ def write_matches(scene_dir, path):
     return truth
 
 
+def majority_truth(truth, labels):
+    """Per motion found (label order): the truth most of its matches have
+    (0 gross outliers)."""
+    return [Counter(truth[labels == c].tolist()).most_common(1)[0][0]
+            for c in sorted(set(labels.tolist()) - {-1})]
+
+
 def describe(truth, labels):
     """Counts of one scene: found motions by the majority of their matches."""
     motions = [g for g in sorted(set(truth.tolist())) if g != 0]
-    majority = []
-    for c in sorted(set(labels.tolist()) - {-1}):
-        majority.append(Counter(truth[labels == c].tolist()).most_common(1)[0][0])
+    majority = majority_truth(truth, labels)
     held = Counter(majority)
     return {
         "n": len(truth),
@@ -137,9 +142,8 @@ def main():
             truth = write_matches(data / name, matches)
             runs = [segment(args.sctl, matches, seed, args.out) for seed in seeds]
             rows.append({"scene": name, **describe(truth, runs[0])})
-            majority = [Counter(truth[runs[0] == c].tolist()).most_common(1)[0][0] == 0
-                        for c in sorted(set(runs[0].tolist()) - {-1})]
-            back += zip(majority, comes_back(runs[0], runs[1:]))
+            of_outliers = [t == 0 for t in majority_truth(truth, runs[0])]
+            back += zip(of_outliers, comes_back(runs[0], runs[1:]))
     with open(args.out / "scenes.csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()

@@ -71,11 +71,10 @@ fn ln_uniform_sum_cdf(n: usize, m: usize, s: usize) -> f64 {
 /// epipole).
 fn neighbour_rank(points: &Correspondences, tested: &[usize], i: usize, f: &Matrix3<f64>) -> usize {
     let worst = tested.len() - 2;
-    let Some(along) = line_direction(f, points.point1(tested[i])) else {
+    let (x1, x2) = (points.point1(tested[i]), points.point2(tested[i]));
+    let Some(along) = line_direction(f, x1) else {
         return worst;
     };
-    let x1 = points.point1(tested[i]);
-    let x2 = points.point2(tested[i]);
     let squared = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2);
     let distance_along = |m: usize| {
         let q = points.point2(m);
@@ -105,7 +104,7 @@ fn line_direction(f: &Matrix3<f64>, x1: [f64; 2]) -> Option<[f64; 2]> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use nalgebra::{Rotation3, Vector3};
+    use nalgebra::Rotation3;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 

@@ -197,7 +197,7 @@ fn is_coherent(
     f: &Matrix3<f64>,
     ln_groups: f64,
 ) -> bool {
-    let own: Vec<usize> = group.iter().copied().filter(|&m| !explained.0[m]).collect();
+    let own: Vec<usize> = explained.counting(group).collect();
     ln_groups + ln_incoherence(points, &own, f) < 0.0
 }
 
@@ -243,6 +243,11 @@ fn polish_on_support(
 pub struct Explained(Vec<bool>);
 
 impl Explained {
+    /// The matches of `group` that count: those no detection explains.
+    fn counting<'a>(&'a self, group: &'a [usize]) -> impl Iterator<Item = usize> + 'a {
+        group.iter().copied().filter(|&m| !self.0[m])
+    }
+
     fn add(&mut self, residuals: &[f64], thr_px: f64) {
         for (e, &r) in self.0.iter_mut().zip(residuals) {
             *e |= r <= thr_px;
@@ -295,14 +300,13 @@ fn fit_given<'a>(
     image: &ImageRect,
     cache: &'a mut Option<Cached>,
 ) -> Option<&'a GroupFit> {
-    let counts = |m: &usize| !explained.0[*m];
-    let own_len = group.iter().filter(|m| counts(m)).count();
+    let own_len = explained.counting(group).count();
     if own_len <= FITTED_MATCHES {
         *cache = None;
         return None;
     }
     if cache.as_ref().map(|c| c.own) != Some(own_len) {
-        let own: Vec<usize> = group.iter().copied().filter(|m| counts(m)).collect();
+        let own: Vec<usize> = explained.counting(group).collect();
         let fit = refit(points, &own, irls).map(|f| GroupFit {
             f,
             residuals: sampson_residuals(points, &f),
