@@ -66,14 +66,31 @@ pub fn significance(
     background: &Background,
     max_threshold_px: f64,
 ) -> Significance {
+    significance_fitted(
+        sorted,
+        ln_tests,
+        background,
+        max_threshold_px,
+        FITTED_MATCHES,
+    )
+}
+
+/// [`significance`] of a model that fits `fitted` matches exactly.
+pub fn significance_fitted(
+    sorted: &[f64],
+    ln_tests: f64,
+    background: &Background,
+    max_threshold_px: f64,
+    fitted: usize,
+) -> Significance {
     let n = sorted.len();
     let within = sorted.partition_point(|&r| r <= max_threshold_px);
-    if within <= FITTED_MATCHES {
+    if within <= fitted {
         return Significance::NONE;
     }
-    let s = FITTED_MATCHES as u64;
+    let s = fitted as u64;
     let mut best = Significance::NONE;
-    let mut k = FITTED_MATCHES + 1;
+    let mut k = fitted + 1;
     loop {
         let eps = sorted[k - 1];
         let p = background.probability(eps);
@@ -154,12 +171,20 @@ pub fn detect(
             .iter()
             .enumerate()
             .filter_map(|(pos, &i)| {
-                let fit = fit_given(points, &groups[i], &explained, irls, image, &mut fits[i])?;
-                let significance = fit.significance(&explained, ln_tests, thr_px);
-                Some((pos, i, significance))
+                let fit = fit_given(
+                    points,
+                    &groups[i],
+                    &explained,
+                    irls,
+                    image,
+                    thr_px,
+                    &mut fits[i],
+                )?;
+                let (significance, model) = fit.significance(&explained, ln_tests, thr_px);
+                Some((pos, i, significance, model))
             })
             .min_by(|a, b| a.2.ln_nfa.total_cmp(&b.2.ln_nfa).then(a.1.cmp(&b.1)));
-        let Some((pos, group, significance)) = best else {
+        let Some((pos, group, significance, model)) = best else {
             break;
         };
         if !significance.is_significant() {
@@ -169,6 +194,7 @@ pub fn detect(
         let fit = fits[group]
             .take()
             .and_then(|c| c.fit)
+            .and_then(|g| g.models.into_iter().nth(model))
             .expect("a scored group has its fit");
         if !is_coherent(points, &groups[group], &explained, &fit.f, ln_groups) {
             continue;
@@ -260,25 +286,101 @@ impl Explained {
 /// a round reuses the last round's fit of a group none of whose matches
 /// the last detection explained.
 struct GroupFit {
+    models: Vec<Model>,
+}
+
+/// One model of a group.
+struct Model {
     f: Matrix3<f64>,
     /// Sampson distances (px) of every match to `f`.
     residuals: Vec<f64>,
     background: Background,
+    fitted: usize,
+    /// ln of the number of candidates it was chosen among.
+    ln_candidates: f64,
 }
 
 impl GroupFit {
-    /// The significance of `f` over the matches that count.
-    fn significance(&self, explained: &Explained, ln_tests: f64, thr_px: f64) -> Significance {
-        let mut r: Vec<f64> = self
-            .residuals
+    /// The best significance of its models over the matches that count,
+    /// and which model.
+    fn significance(
+        &self,
+        explained: &Explained,
+        ln_tests: f64,
+        thr_px: f64,
+    ) -> (Significance, usize) {
+        let ln_models = (self.models.len() as f64).ln();
+        self.models
             .iter()
-            .zip(&explained.0)
-            .filter(|(_, &e)| !e)
-            .map(|(&r, _)| r)
-            .collect();
-        r.sort_by(f64::total_cmp);
-        significance(&r, ln_tests, &self.background, thr_px)
+            .enumerate()
+            .map(|(i, m)| {
+                let mut r: Vec<f64> = m
+                    .residuals
+                    .iter()
+                    .zip(&explained.0)
+                    .filter(|(_, &e)| !e)
+                    .map(|(&r, _)| r)
+                    .collect();
+                r.sort_by(f64::total_cmp);
+                let s = significance_fitted(
+                    &r,
+                    ln_tests + ln_models + m.ln_candidates,
+                    &m.background,
+                    thr_px,
+                    m.fitted,
+                );
+                (s, i)
+            })
+            .min_by(|a, b| a.0.ln_nfa.total_cmp(&b.0.ln_nfa).then(a.1.cmp(&b.1)))
+            .expect("a fit has a model")
     }
+}
+
+fn proto_e() -> Option<usize> {
+    std::env::var("SCTL_PROTO_E")
+        .ok()
+        .and_then(|v| v.parse().ok())
+}
+
+/// Best-of-R five-point F (at the focal max(W, H)) on `own`.
+fn essential_fit(
+    points: &Correspondences,
+    own: &[usize],
+    image: &ImageRect,
+    thr_px: f64,
+    rounds: usize,
+) -> Option<(Matrix3<f64>, usize)> {
+    use rand::seq::index::sample;
+    let scale: f64 = std::env::var("SCTL_PROTO_FSCALE")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(1.0);
+    let focal = scale * (image.max[0] - image.min[0]).max(image.max[1] - image.min[1]);
+    let thr2 = thr_px * thr_px;
+    let sub = points.subset(own).ok()?;
+    let mut rng = crate::hypothesis_rng(
+        crate::splitmix64(own.len() as u64 ^ ((own[0] as u64) << 20)),
+        0,
+    );
+    let mut best: Option<(usize, f64, Matrix3<f64>)> = None;
+    let mut r = vec![0.0; sub.len()];
+    let mut tried = 0;
+    for _ in 0..rounds {
+        let pick: Vec<usize> = sample(&mut rng, sub.len(), 5).into_vec();
+        let Ok(minimal) = sub.subset(&pick) else {
+            continue;
+        };
+        for f in crate::minimal::candidates(&minimal, focal) {
+            tried += 1;
+            geometry::sampson_distances_squared(&f, &sub, &mut r);
+            let count = r.iter().filter(|&&d| d <= thr2).count();
+            let cost: f64 = r.iter().map(|&d| d.min(thr2)).sum();
+            if best.as_ref().is_none_or(|b| (count, -cost) > (b.0, -b.1)) {
+                best = Some((count, cost, f));
+            }
+        }
+    }
+    best.map(|b| (b.2, tried))
 }
 
 /// A group's last refit: how many of its matches counted, and the fit
@@ -298,6 +400,7 @@ fn fit_given<'a>(
     explained: &Explained,
     irls: &IrlsParams,
     image: &ImageRect,
+    thr_px: f64,
     cache: &'a mut Option<Cached>,
 ) -> Option<&'a GroupFit> {
     let own_len = explained.counting(group).count();
@@ -307,11 +410,27 @@ fn fit_given<'a>(
     }
     if cache.as_ref().map(|c| c.own) != Some(own_len) {
         let own: Vec<usize> = explained.counting(group).collect();
-        let fit = refit(points, &own, irls).map(|f| GroupFit {
+        let model = |f: Matrix3<f64>, fitted, ln_candidates| Model {
             f,
             residuals: sampson_residuals(points, &f),
             background: Background::new(&f, image),
-        });
+            fitted,
+            ln_candidates,
+        };
+        let mut models: Vec<Model> = refit(points, &own, irls)
+            .map(|f| model(f, FITTED_MATCHES, 0.0))
+            .into_iter()
+            .collect();
+        if let Some(rounds) = proto_e() {
+            if let Some((e, tried)) = essential_fit(points, &own, image, thr_px, rounds) {
+                let fitted = std::env::var("SCTL_PROTO_S")
+                    .ok()
+                    .and_then(|v| v.parse().ok())
+                    .unwrap_or(5);
+                models.push(model(e, fitted, (tried as f64).ln()));
+            }
+        }
+        let fit = (!models.is_empty()).then_some(GroupFit { models });
         *cache = Some(Cached { own: own_len, fit });
     }
     cache.as_ref().and_then(|c| c.fit.as_ref())
