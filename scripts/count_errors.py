@@ -1,16 +1,16 @@
 #!/usr/bin/env python3
-"""Where the default's motion count goes wrong on HOPE-F-faithful scenes:
+"""Where the default's motion count goes wrong on HOPE-F-like scenes:
 each motion found is described by the truth of its matches, each true motion
 by whether a found motion holds most of it (results/notes/selection.md,
 "Where the count is lost").
 
-Usage: python3 scripts/count_errors.py [--sctl BIN] [--first 800] [--last 899]
-       [--seeds 12345,1,2] OUT_DIR
+Usage: python3 scripts/count_errors.py [--sctl BIN] [--preset hopef] [--first 800]
+       [--last 899] [--seeds 12345,1,2] OUT_DIR
 
-Writes the `hopef` preset (generator seed 1, as every config of the family)
-into OUT_DIR/data with `sctl synth`, segments scenes FIRST..LAST of its four
-categories with `sctl segment` (the default profile, one thread, focal prior
-max(W, H), image 1024 x 1024) and writes OUT_DIR/scenes.csv (one row per
+Writes the preset (`hopef` or `adelaide-like`; generator seed 1, as every
+config of the family) into OUT_DIR/data with `sctl synth`, segments scenes
+FIRST..LAST of its four categories with `sctl segment` (the default profile,
+one thread, focal prior max(W, H), the scene's image size) and writes OUT_DIR/scenes.csv (one row per
 scene: N, outliers, true motions and their sizes, motions found, found
 motions whose majority is ground-truth outliers, true motions split, true
 motions no found motion holds the majority of) and prints a summary. With
@@ -31,14 +31,15 @@ from pathlib import Path
 import numpy as np
 
 
-def segment(sctl, matches_csv, seed, work):
-    """The default's labels of one match file (-1 outliers) with this seed."""
+def segment(sctl, matches_csv, size, seed, work):
+    """The default's labels of one match file (-1 outliers) with this seed;
+    `size` the images' (width, height)."""
     config = work / f"seed_{seed}.toml"
     if not config.exists():
         config.write_text(f"[pipeline]\nseed = {seed}\n")
     run = subprocess.run(
-        [sctl, "segment", "--matches", str(matches_csv), "--width", "1024",
-         "--height", "1024", "--threads", "1", "--config", str(config), "--out", "-"],
+        [sctl, "segment", "--matches", str(matches_csv), "--width", str(size[0]),
+         "--height", str(size[1]), "--threads", "1", "--config", str(config), "--out", "-"],
         capture_output=True, text=True, check=True)
     return np.array([int(x) for x in run.stdout.split()])
 
@@ -58,14 +59,16 @@ def comes_back(labels, others):
 
 
 def write_matches(scene_dir, path):
-    """The scene's matches as `x1,y1,x2,y2,label` (label 0 outlier); its truth."""
+    """The scene's matches as `x1,y1,x2,y2,label` (label 0 outlier); its
+    truth and image size."""
     d = np.load(scene_dir / "features_and_ground_truth.npz")
     truth = d["labels"]
     with open(path, "w") as f:
         f.write("x1,y1,x2,y2,label\n")
         for a, b, t in zip(d["points1"], d["points2"], truth):
             f.write(f"{a[0]},{a[1]},{b[0]},{b[1]},{t}\n")
-    return truth
+    size = np.load(scene_dir / "camera_parameters.npz")["image_size"]
+    return truth, (int(size[0]), int(size[1]))
 
 
 def majority_truth(truth, labels):
@@ -124,6 +127,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("out", type=Path)
     ap.add_argument("--sctl", default="target/release/sctl")
+    ap.add_argument("--preset", default="hopef", choices=["hopef", "adelaide-like"])
     ap.add_argument("--first", type=int, default=800)
     ap.add_argument("--last", type=int, default=899)
     ap.add_argument("--seeds", default="12345")
@@ -132,15 +136,15 @@ def main():
     if args.out.exists() and any(args.out.iterdir()):
         sys.exit(f"count_errors: {args.out} is not empty; name a new directory")
     data = args.out / "data"
-    subprocess.run([args.sctl, "synth", "--preset", "hopef", "--seed", "1", "--out",
+    subprocess.run([args.sctl, "synth", "--preset", args.preset, "--seed", "1", "--out",
                     str(data)], check=True, capture_output=True)
     rows, back = [], []
     for category in "1234":
         for scene in range(args.first, args.last + 1):
             name = f"{category}/{scene:04d}"
             matches = args.out / f"{category}_{scene:04d}.csv"
-            truth = write_matches(data / name, matches)
-            runs = [segment(args.sctl, matches, seed, args.out) for seed in seeds]
+            truth, size = write_matches(data / name, matches)
+            runs = [segment(args.sctl, matches, size, seed, args.out) for seed in seeds]
             rows.append({"scene": name, **describe(truth, runs[0])})
             of_outliers = [t == 0 for t in majority_truth(truth, runs[0])]
             back += zip(of_outliers, comes_back(runs[0], runs[1:]))

@@ -47,7 +47,6 @@ fn unambiguous(s: &Scene, fs: &[Matrix3<f64>]) -> Vec<i32> {
 }
 
 #[test]
-#[ignore = "not achieved: 4 motions for 3, the right motion in two (results/notes/selection.md, Calibration)"]
 fn the_default_finds_three_planted_motions_at_n_50000() {
     let (s, planted) = three_planted([30_000, 10_000, 5000], 5000);
     let (labels, motions) = default_labels(&s);

@@ -21,6 +21,7 @@ pub mod coherence;
 #[cfg(test)]
 mod default_tests;
 pub mod nfa;
+pub mod semicalibrated;
 #[cfg(test)]
 mod tests;
 mod vote;
@@ -70,6 +71,38 @@ pub enum SelectionError {
     /// length: an image with a zero side, or a principal point not finite.
     #[error("selection: the image spans [{}, {}] x [{}, {}] px around the principal point, which has no area", .0.min[0], .0.max[0], .0.min[1], .0.max[1])]
     BadImage(ImageRect),
+    /// A focal prior not finite and positive.
+    #[error("selection: the focal prior must be a finite number of px > 0, got {0}")]
+    BadFocal(f64),
+}
+
+/// What the selection knows of the camera that took both images.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Camera {
+    /// The images' rectangle around the principal point: the domain of the
+    /// NFA's background.
+    pub image: ImageRect,
+    /// The focal prior (px) of each group's semi-calibrated model
+    /// ([`semicalibrated`]); max(W, H) by default, and 0.5–4× the true
+    /// focal costs little (docs/method.md).
+    pub focal_px: f64,
+}
+
+impl Camera {
+    /// A camera of images of `size` (W, H) px, principal point at the
+    /// centre, focal prior max(W, H).
+    ///
+    /// ```
+    /// use segmentation::selection::{Camera, ImageRect};
+    /// let c = Camera::centred((640, 480));
+    /// assert_eq!((c.image, c.focal_px), (ImageRect::centred((640, 480)), 640.0));
+    /// ```
+    pub fn centred(size: (u32, u32)) -> Self {
+        Self {
+            image: ImageRect::centred(size),
+            focal_px: f64::from(size.0.max(size.1)),
+        }
+    }
 }
 
 /// The clusters that are motions.
@@ -102,25 +135,25 @@ fn refit_params(thr_px: f64) -> IrlsParams {
 
 /// Motions and outliers from the clustering's `labels` (−1 outliers) of
 /// the principal-point-centred `points`: [`select_groups`] of the labels'
-/// clusters; `image` is the images' rectangle in the points' frame (the
-/// background's domain) and `thr_px` the inlier threshold (the NFA's
-/// largest threshold and the refits' inlier bound).
+/// clusters; `camera` holds the images' rectangle in the points' frame
+/// (the background's domain) and the focal prior, `thr_px` is the inlier
+/// threshold (the NFA's largest threshold and the refits' inlier bound).
 pub fn select(
     points: &Correspondences,
     labels: &[i32],
-    image: ImageRect,
+    camera: Camera,
     thr_px: f64,
 ) -> Result<Selection, SelectionError> {
-    check(points, labels, image, thr_px)?;
+    check(points, labels, camera, thr_px)?;
     let irls = refit_params(thr_px);
-    let labels = by_nfa(points, &groups_of(labels), image, thr_px, &irls);
+    let labels = by_nfa(points, &groups_of(labels), &camera, thr_px, &irls);
     Ok(Selection::of(labels))
 }
 
 fn check(
     points: &Correspondences,
     labels: &[i32],
-    image: ImageRect,
+    camera: Camera,
     thr_px: f64,
 ) -> Result<(), SelectionError> {
     if labels.len() != points.len() {
@@ -132,15 +165,18 @@ fn check(
     if let Some((index, &label)) = labels.iter().enumerate().find(|(_, &l)| l < -1) {
         return Err(SelectionError::BadLabel { index, label });
     }
-    check_scene(image, thr_px)
+    check_scene(camera, thr_px)
 }
 
-fn check_scene(image: ImageRect, thr_px: f64) -> Result<(), SelectionError> {
+fn check_scene(camera: Camera, thr_px: f64) -> Result<(), SelectionError> {
     if !(thr_px.is_finite() && thr_px > 0.0) {
         return Err(SelectionError::BadThreshold(thr_px));
     }
-    if !image.is_valid() {
-        return Err(SelectionError::BadImage(image));
+    if !camera.image.is_valid() {
+        return Err(SelectionError::BadImage(camera.image));
+    }
+    if !(camera.focal_px.is_finite() && camera.focal_px > 0.0) {
+        return Err(SelectionError::BadFocal(camera.focal_px));
     }
     Ok(())
 }
@@ -158,17 +194,17 @@ fn check_scene(image: ImageRect, thr_px: f64) -> Result<(), SelectionError> {
 ///
 /// ```
 /// use geometry::Correspondences;
-/// use segmentation::selection::{select_groups, ImageRect};
+/// use segmentation::selection::{select_groups, Camera};
 /// // No group: no motion, every match an outlier.
 /// let p = [[0.0, 0.0]; 20];
 /// let pts = Correspondences::new(&p, &p).unwrap();
-/// let s = select_groups(&pts, &[], ImageRect::centred((640, 480)), 2.5).unwrap();
+/// let s = select_groups(&pts, &[], Camera::centred((640, 480)), 2.5).unwrap();
 /// assert_eq!((s.motions, s.labels), (0, vec![-1; 20]));
 /// ```
 pub fn select_groups(
     points: &Correspondences,
     groups: &[Vec<usize>],
-    image: ImageRect,
+    camera: Camera,
     thr_px: f64,
 ) -> Result<Selection, SelectionError> {
     if let Some(&index) = groups.iter().flatten().find(|&&m| m >= points.len()) {
@@ -177,9 +213,9 @@ pub fn select_groups(
             points: points.len(),
         });
     }
-    check_scene(image, thr_px)?;
+    check_scene(camera, thr_px)?;
     let irls = refit_params(thr_px);
-    let labels = by_nfa(points, groups, image, thr_px, &irls);
+    let labels = by_nfa(points, groups, &camera, thr_px, &irls);
     Ok(Selection::of(labels))
 }
 
@@ -195,11 +231,11 @@ pub fn select_groups(
 fn by_nfa(
     points: &Correspondences,
     groups: &[Vec<usize>],
-    image: ImageRect,
+    camera: &Camera,
     thr_px: f64,
     irls: &IrlsParams,
 ) -> Vec<i32> {
-    let detections = nfa::detect(points, groups, &image, thr_px, irls);
+    let detections = nfa::detect(points, groups, camera, thr_px, irls);
     let residuals: Vec<&Vec<f64>> = detections.iter().map(|d| &d.residuals).collect();
     let mut assigned = by_nearest_f(&residuals, points.len(), thr_px);
     let mut held = vec![false; points.len()];

@@ -12,6 +12,8 @@
 pub use super::background::{Background, ImageRect};
 use super::binomial::ln_binomial_tail;
 use super::coherence::ln_incoherence;
+use super::semicalibrated::{semicalibrated_fit, SEMICALIBRATED_FITTED};
+use super::Camera;
 use super::{refit, sampson_residuals};
 use geometry::{Correspondences, IrlsParams};
 use nalgebra::Matrix3;
@@ -118,8 +120,9 @@ pub fn significance_fitted(
 pub struct Detection {
     /// Index of the group in the input.
     pub group: usize,
-    /// Its F, refitted by IRLS-Tukey on its matches not explained by the
-    /// detections before it.
+    /// Its F: of its two models (its F refitted by IRLS-Tukey on its
+    /// matches not explained by the detections before it, and its
+    /// semi-calibrated F) the one of smaller NFA, polished on its support.
     pub f: Matrix3<f64>,
     /// Its score given the detections before it.
     pub significance: Significance,
@@ -139,18 +142,22 @@ pub struct Detection {
 /// when a detected F explains it: when it lies within `thr_px` of it (the
 /// inlier threshold of the preferences, Eq. 38; AC-RANSAC's own threshold
 /// of the detected F, smaller, would leave its noise tail to support a
-/// copy of it). The group's F is refitted by IRLS-Tukey on its matches
-/// that count (`fit_given`; the fit is reused while none of them
-/// becomes explained). So a fragment of a detected motion keeps no more
-/// than the few matches of its noise tail, and a mover beyond `thr_px` of
-/// the background's F keeps the matches there.
+/// copy of it). A group is scored with two models fitted on its matches
+/// that count (`fit_given`; the fits are reused while none of them
+/// becomes explained): its F refitted by IRLS-Tukey, 7 fitted matches,
+/// and its semi-calibrated F `K⁻ᵀ E K⁻¹` at `camera.focal_px`, the best of
+/// its five-point candidates ([`semicalibrated_fit`]), 5 fitted matches;
+/// its NFA is the smaller of the two. So a fragment of a detected motion
+/// keeps no more than the few matches of its noise tail, and a mover
+/// beyond `thr_px` of the background's F keeps the matches there.
 ///
-/// The number of tests is `G · (N − 7)`: G groups of at least 8 matches,
-/// N − 7 thresholds each.
+/// The number of tests is `G · (N − 7) · 2`, times the candidates for the
+/// semi-calibrated model: G groups of at least 8 matches, N − 7 thresholds
+/// each, two models (a union bound).
 pub fn detect(
     points: &Correspondences,
     groups: &[Vec<usize>],
-    image: &ImageRect,
+    camera: &Camera,
     thr_px: f64,
     irls: &IrlsParams,
 ) -> Vec<Detection> {
@@ -176,7 +183,7 @@ pub fn detect(
                     &groups[i],
                     &explained,
                     irls,
-                    image,
+                    camera,
                     thr_px,
                     &mut fits[i],
                 )?;
@@ -199,8 +206,40 @@ pub fn detect(
         if !is_coherent(points, &groups[group], &explained, &fit.f, ln_groups) {
             continue;
         }
-        let (f, residuals) =
-            polish_on_support(points, fit.f, fit.residuals, &explained, thr_px, irls);
+        let proto = std::env::var("SCTL_PROTO_NOPOLISH_E").ok();
+        let unpolished = proto.as_deref() == Some("1")
+            || (proto.as_deref() == Some("subset") && points.len() <= 1000);
+        let (f, residuals) = if fit.fitted == SEMICALIBRATED_FITTED && unpolished {
+            (fit.f, fit.residuals)
+        } else if fit.fitted == SEMICALIBRATED_FITTED && proto.as_deref() == Some("lo") {
+            let (mut f, mut residuals) = (fit.f, fit.residuals);
+            for _ in 0..POLISH_ROUNDS {
+                let support: Vec<usize> = residuals
+                    .iter()
+                    .enumerate()
+                    .filter(|&(m, &r)| r <= thr_px && !explained.0[m])
+                    .map(|(m, _)| m)
+                    .collect();
+                let inliers = support.len();
+                let Some(s) = semicalibrated_fit(points, &support, camera.focal_px, thr_px) else {
+                    break;
+                };
+                let r = sampson_residuals(points, &s.f);
+                let count = r
+                    .iter()
+                    .zip(&explained.0)
+                    .filter(|(&r, &e)| r <= thr_px && !e)
+                    .count();
+                if count < inliers {
+                    break;
+                }
+                f = s.f;
+                residuals = r;
+            }
+            (f, residuals)
+        } else {
+            polish_on_support(points, fit.f, fit.residuals, &explained, thr_px, irls)
+        };
         explained.add(&residuals, thr_px);
         detections.push(Detection {
             group,
@@ -281,106 +320,80 @@ impl Explained {
     }
 }
 
-/// A group's F refitted on its matches that count, with what scoring it
-/// needs: it changes only when one of those matches becomes explained, so
-/// a round reuses the last round's fit of a group none of whose matches
-/// the last detection explained.
+/// The models a group is scored with, fitted on its matches that count:
+/// its F refitted by IRLS-Tukey and its semi-calibrated F
+/// ([`semicalibrated_fit`]). They change only when one of those matches
+/// becomes explained, so a round reuses the last round's fit of a group
+/// none of whose matches the last detection explained.
 struct GroupFit {
     models: Vec<Model>,
 }
 
-/// One model of a group.
+/// One model of a group, with what its NFA needs.
 struct Model {
     f: Matrix3<f64>,
     /// Sampson distances (px) of every match to `f`.
     residuals: Vec<f64>,
     background: Background,
+    /// The matches its fit brings onto their lines whatever they are:
+    /// [`FITTED_MATCHES`] for an F, [`SEMICALIBRATED_FITTED`] for
+    /// `K⁻ᵀ E K⁻¹`.
     fitted: usize,
-    /// ln of the number of candidates it was chosen among.
+    /// ln of the number of candidates it was chosen among (0 for the
+    /// refitted F, one candidate).
     ln_candidates: f64,
 }
 
+impl Model {
+    fn new(
+        points: &Correspondences,
+        image: &ImageRect,
+        f: Matrix3<f64>,
+        fitted: usize,
+        candidates: usize,
+    ) -> Self {
+        Self {
+            f,
+            residuals: sampson_residuals(points, &f),
+            background: Background::new(&f, image),
+            fitted,
+            ln_candidates: (candidates as f64).ln(),
+        }
+    }
+
+    /// Its significance over the matches that count, `ln_tests` the tests
+    /// beyond its own candidates.
+    fn significance(&self, explained: &Explained, ln_tests: f64, thr_px: f64) -> Significance {
+        let mut r: Vec<f64> = self
+            .residuals
+            .iter()
+            .zip(&explained.0)
+            .filter(|(_, &e)| !e)
+            .map(|(&r, _)| r)
+            .collect();
+        r.sort_by(f64::total_cmp);
+        let ln_tests = ln_tests + self.ln_candidates;
+        significance_fitted(&r, ln_tests, &self.background, thr_px, self.fitted)
+    }
+}
+
 impl GroupFit {
-    /// The best significance of its models over the matches that count,
-    /// and which model.
+    /// The smallest significance of its models, each NFA counting the
+    /// models as tests (a union bound), and which model it is.
     fn significance(
         &self,
         explained: &Explained,
         ln_tests: f64,
         thr_px: f64,
     ) -> (Significance, usize) {
-        let ln_models = (self.models.len() as f64).ln();
+        let ln_tests = ln_tests + (self.models.len() as f64).ln();
         self.models
             .iter()
             .enumerate()
-            .map(|(i, m)| {
-                let mut r: Vec<f64> = m
-                    .residuals
-                    .iter()
-                    .zip(&explained.0)
-                    .filter(|(_, &e)| !e)
-                    .map(|(&r, _)| r)
-                    .collect();
-                r.sort_by(f64::total_cmp);
-                let s = significance_fitted(
-                    &r,
-                    ln_tests + ln_models + m.ln_candidates,
-                    &m.background,
-                    thr_px,
-                    m.fitted,
-                );
-                (s, i)
-            })
+            .map(|(i, m)| (m.significance(explained, ln_tests, thr_px), i))
             .min_by(|a, b| a.0.ln_nfa.total_cmp(&b.0.ln_nfa).then(a.1.cmp(&b.1)))
-            .expect("a fit has a model")
+            .expect("a group fit has a model")
     }
-}
-
-fn proto_e() -> Option<usize> {
-    std::env::var("SCTL_PROTO_E")
-        .ok()
-        .and_then(|v| v.parse().ok())
-}
-
-/// Best-of-R five-point F (at the focal max(W, H)) on `own`.
-fn essential_fit(
-    points: &Correspondences,
-    own: &[usize],
-    image: &ImageRect,
-    thr_px: f64,
-    rounds: usize,
-) -> Option<(Matrix3<f64>, usize)> {
-    use rand::seq::index::sample;
-    let scale: f64 = std::env::var("SCTL_PROTO_FSCALE")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(1.0);
-    let focal = scale * (image.max[0] - image.min[0]).max(image.max[1] - image.min[1]);
-    let thr2 = thr_px * thr_px;
-    let sub = points.subset(own).ok()?;
-    let mut rng = crate::hypothesis_rng(
-        crate::splitmix64(own.len() as u64 ^ ((own[0] as u64) << 20)),
-        0,
-    );
-    let mut best: Option<(usize, f64, Matrix3<f64>)> = None;
-    let mut r = vec![0.0; sub.len()];
-    let mut tried = 0;
-    for _ in 0..rounds {
-        let pick: Vec<usize> = sample(&mut rng, sub.len(), 5).into_vec();
-        let Ok(minimal) = sub.subset(&pick) else {
-            continue;
-        };
-        for f in crate::minimal::candidates(&minimal, focal) {
-            tried += 1;
-            geometry::sampson_distances_squared(&f, &sub, &mut r);
-            let count = r.iter().filter(|&&d| d <= thr2).count();
-            let cost: f64 = r.iter().map(|&d| d.min(thr2)).sum();
-            if best.as_ref().is_none_or(|b| (count, -cost) > (b.0, -b.1)) {
-                best = Some((count, cost, f));
-            }
-        }
-    }
-    best.map(|b| (b.2, tried))
 }
 
 /// A group's last refit: how many of its matches counted, and the fit
@@ -399,7 +412,7 @@ fn fit_given<'a>(
     group: &[usize],
     explained: &Explained,
     irls: &IrlsParams,
-    image: &ImageRect,
+    camera: &Camera,
     thr_px: f64,
     cache: &'a mut Option<Cached>,
 ) -> Option<&'a GroupFit> {
@@ -410,26 +423,18 @@ fn fit_given<'a>(
     }
     if cache.as_ref().map(|c| c.own) != Some(own_len) {
         let own: Vec<usize> = explained.counting(group).collect();
-        let model = |f: Matrix3<f64>, fitted, ln_candidates| Model {
-            f,
-            residuals: sampson_residuals(points, &f),
-            background: Background::new(&f, image),
-            fitted,
-            ln_candidates,
-        };
-        let mut models: Vec<Model> = refit(points, &own, irls)
-            .map(|f| model(f, FITTED_MATCHES, 0.0))
-            .into_iter()
-            .collect();
-        if let Some(rounds) = proto_e() {
-            if let Some((e, tried)) = essential_fit(points, &own, image, thr_px, rounds) {
-                let fitted = std::env::var("SCTL_PROTO_S")
-                    .ok()
-                    .and_then(|v| v.parse().ok())
-                    .unwrap_or(5);
-                models.push(model(e, fitted, (tried as f64).ln()));
-            }
-        }
+        let refitted = refit(points, &own, irls)
+            .map(|f| Model::new(points, &camera.image, f, FITTED_MATCHES, 1));
+        let semicalibrated = semicalibrated_fit(points, &own, camera.focal_px, thr_px).map(|s| {
+            Model::new(
+                points,
+                &camera.image,
+                s.f,
+                SEMICALIBRATED_FITTED,
+                s.candidates,
+            )
+        });
+        let models: Vec<Model> = refitted.into_iter().chain(semicalibrated).collect();
         let fit = (!models.is_empty()).then_some(GroupFit { models });
         *cache = Some(Cached { own: own_len, fit });
     }

@@ -13,9 +13,10 @@ pub(super) const FOCAL: f64 = 700.0;
 pub(super) const NOISE_PX: f64 = 0.5;
 pub(super) const THR_PX: f64 = 2.5;
 
-/// The images of [`SIZE`], centred on the principal point.
-pub(super) fn image() -> ImageRect {
-    ImageRect::centred(SIZE)
+/// The camera of images of [`SIZE`], centred on the principal point,
+/// focal prior max(W, H) (not [`FOCAL`]: the prior is a guess).
+pub(super) fn camera() -> Camera {
+    Camera::centred(SIZE)
 }
 
 /// A rigid motion of points between the two views, x₂ = R x₁ + t, of
@@ -234,7 +235,7 @@ fn two_clusters_of_one_motion_in_different_regions_are_one() {
             }
         })
         .collect();
-    let sel = select(&s.points(), &labels, image(), THR_PX).unwrap();
+    let sel = select(&s.points(), &labels, camera(), THR_PX).unwrap();
     assert_eq!(sel.motions, 1);
 }
 
@@ -250,7 +251,7 @@ fn two_motions_with_different_fs_in_different_regions_stay_two() {
         (20.0, 300.0),
     );
     let labels = clustering(&s.truth, 1, 0);
-    let sel = select(&s.points(), &labels, image(), THR_PX).unwrap();
+    let sel = select(&s.points(), &labels, camera(), THR_PX).unwrap();
     assert_eq!(sel.motions, 2);
 }
 
@@ -274,17 +275,17 @@ pub(super) fn small_mover(n: usize, seed: u64) -> Scene {
 
 #[test]
 fn a_mover_of_two_percent_at_three_px_survives_the_nfa() {
-    // Not at N 500: 10 matches, 7 of which any F fits, are not meaningful
-    // (results/notes/selection.md).
+    // Not at N 500: 10 matches, 7 of which any F fits (5 a semi-calibrated
+    // one), are not meaningful (results/notes/selection.md).
     for n in [2000, 20_000] {
         let s = small_mover(n, 3);
         let labels = clustering(&s.truth, 1, 0);
-        let sel = select(&s.points(), &labels, image(), THR_PX).unwrap();
+        let sel = select(&s.points(), &labels, camera(), THR_PX).unwrap();
         assert_eq!(sel.motions, 2, "N {n}");
         assert!(kept_together(&s.truth, &sel.labels, 1) > 0.9, "N {n}");
         // And with the background in 4 fragments and the outliers in clusters of 10.
         let labels = clustering(&s.truth, 4, 10);
-        let sel = select(&s.points(), &labels, image(), THR_PX).unwrap();
+        let sel = select(&s.points(), &labels, camera(), THR_PX).unwrap();
         assert_eq!(sel.motions, 2, "N {n}, fragments");
     }
 }
@@ -296,7 +297,7 @@ fn pure_outliers_give_no_motion() {
         // A clustering of the outliers into groups of 10, 20 and 40.
         for size in [10, 20, 40] {
             let labels: Vec<i32> = (0..n).map(|i| (i / size) as i32).collect();
-            let sel = select(&s.points(), &labels, image(), THR_PX).unwrap();
+            let sel = select(&s.points(), &labels, camera(), THR_PX).unwrap();
             assert_eq!(sel.motions, 0, "N {n}, groups of {size}");
             assert!(sel.labels.iter().all(|&l| l == -1));
         }
@@ -308,7 +309,7 @@ fn three_planted_motions_at_large_n_give_three() {
     let (s, _) = three_planted([12_000, 4000, 2000], 2000);
     // Each motion in 20 fragments, the outliers in clusters of 12.
     let labels = clustering(&s.truth, 20, 12);
-    let sel = select(&s.points(), &labels, image(), THR_PX).unwrap();
+    let sel = select(&s.points(), &labels, camera(), THR_PX).unwrap();
     assert_eq!(sel.motions, 3);
     for t in 0..3 {
         assert!(kept_together(&s.truth, &sel.labels, t) > 0.95, "motion {t}");
@@ -318,27 +319,37 @@ fn three_planted_motions_at_large_n_give_three() {
 #[test]
 fn bad_input_is_refused_by_name() {
     let p = pure_outliers(20, 6).points();
-    let err = |labels: &[i32], size, thr| select(&p, labels, size, thr).unwrap_err().to_string();
+    let err =
+        |labels: &[i32], camera, thr| select(&p, labels, camera, thr).unwrap_err().to_string();
+    let with_image = |image| Camera { image, ..camera() };
     assert_eq!(
-        err(&[0; 19], image(), 2.5),
+        err(&[0; 19], camera(), 2.5),
         "selection: 19 labels for 20 matches"
     );
     let mut labels = vec![0; 20];
     labels[7] = -3;
     assert_eq!(
-        err(&labels, image(), 2.5),
+        err(&labels, camera(), 2.5),
         "selection: label -3 of match 7 is below -1 (the outlier label)"
     );
     assert_eq!(
-        err(&[0; 20], image(), f64::NAN),
+        err(&[0; 20], camera(), f64::NAN),
         "selection: thr_px must be a finite number > 0, got NaN"
     );
     assert_eq!(
-        err(&[0; 20], ImageRect::centred((0, 480)), 2.5),
+        err(&[0; 20], with_image(ImageRect::centred((0, 480))), 2.5),
         "selection: the image spans [-0, 0] x [-240, 240] px around the principal point, which has no area"
     );
     assert_eq!(
-        err(&[0; 20], ImageRect::new(SIZE, [f64::NAN, 239.5]), 2.5),
+        err(&[0; 20], with_image(ImageRect::new(SIZE, [f64::NAN, 239.5])), 2.5),
         "selection: the image spans [NaN, NaN] x [-240, 240] px around the principal point, which has no area"
+    );
+    let no_focal = Camera {
+        focal_px: 0.0,
+        ..camera()
+    };
+    assert_eq!(
+        err(&[0; 20], no_focal, 2.5),
+        "selection: the focal prior must be a finite number of px > 0, got 0"
     );
 }
