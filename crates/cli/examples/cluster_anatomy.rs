@@ -25,7 +25,7 @@ use geometry::{sampson_distances_squared, Correspondences};
 use nalgebra::Matrix3;
 use sctl::config::PipelineConfig;
 use sctl::pipeline::{matches, scene_seed};
-use segmentation::selection::{nfa, select_groups, Camera};
+use segmentation::selection::{nfa, select_groups, Camera, GroupOrigin};
 use segmentation::{segment, subset_indices, Params, Profile};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -222,7 +222,8 @@ impl Anatomy {
         let groups: Vec<Vec<usize>> = (1..=k as i32)
             .map(|t| (0..truth.len()).filter(|&i| truth[i] == t).collect())
             .collect();
-        let Ok(selected) = select_groups(&points, &groups, camera, thr_px) else {
+        let Ok(selected) = select_groups(&points, &groups, GroupOrigin::Clustered, camera, thr_px)
+        else {
             return;
         };
         self.scenes += 1;

@@ -4,7 +4,7 @@
 use crate::assignment::members;
 use crate::memory_guard::{memory_limit, ASSUMED_PREFERENCE_DENSITY};
 use crate::merge::inlier_words;
-use crate::selection::{select_groups, Camera, ImageRect};
+use crate::selection::{select_groups, Camera, GroupOrigin, ImageRect};
 use crate::{
     available_memory, centred_points, check_available_memory, check_matches,
     estimate_hypothesis_focals, extend_labels, focal_filter, generate_hypotheses_cancellable,
@@ -298,23 +298,12 @@ fn cluster_kept(
             image: ImageRect::new(matches.image_size, matches.principal_point),
             focal_px: matches.focal_prior,
         };
-        let mut camera = camera;
-        if std::env::var("SCTL_PROTO_BBOX").is_ok() {
-            let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-            for i in 0..all_points.len() {
-                for p in [all_points.point1(i), all_points.point2(i)] {
-                    for k in 0..2 {
-                        lo[k] = lo[k].min(p[k] - 0.5);
-                        hi[k] = hi[k].max(p[k] + 0.5);
-                    }
-                }
-            }
-            for k in 0..2 {
-                camera.image.min[k] = camera.image.min[k].max(lo[k]);
-                camera.image.max[k] = camera.image.max[k].min(hi[k]);
-            }
-        }
-        let selected = select_groups(&all_points, &groups, camera, thr)?;
+        let origin = if subset_active {
+            GroupOrigin::Extended
+        } else {
+            GroupOrigin::Clustered
+        };
+        let selected = select_groups(&all_points, &groups, origin, camera, thr)?;
         (selected.labels, selected.motions)
     } else {
         (labels, clusters)

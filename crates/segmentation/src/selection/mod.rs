@@ -76,6 +76,18 @@ pub enum SelectionError {
     BadFocal(f64),
 }
 
+/// Where the groups come from: it decides whether a detected
+/// semi-calibrated F is polished on its support ([`nfa::detect`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum GroupOrigin {
+    /// Every match was clustered: a group holds its motion's matches.
+    Clustered,
+    /// A subset was clustered and the other matches joined its clusters by
+    /// preference ([`crate::extend_labels`]): a motion's matches may lie
+    /// in several groups.
+    Extended,
+}
+
 /// What the selection knows of the camera that took both images.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Camera {
@@ -134,8 +146,8 @@ fn refit_params(thr_px: f64) -> IrlsParams {
 }
 
 /// Motions and outliers from the clustering's `labels` (−1 outliers) of
-/// the principal-point-centred `points`: [`select_groups`] of the labels'
-/// clusters; `camera` holds the images' rectangle in the points' frame
+/// the principal-point-centred `points`, every match clustered:
+/// [`select_groups`] of the labels' clusters ([`GroupOrigin::Clustered`]); `camera` holds the images' rectangle in the points' frame
 /// (the background's domain) and the focal prior, `thr_px` is the inlier
 /// threshold (the NFA's largest threshold and the refits' inlier bound).
 pub fn select(
@@ -146,7 +158,15 @@ pub fn select(
 ) -> Result<Selection, SelectionError> {
     check(points, labels, camera, thr_px)?;
     let irls = refit_params(thr_px);
-    let labels = by_nfa(points, &groups_of(labels), &camera, thr_px, &irls);
+    let groups = groups_of(labels);
+    let labels = by_nfa(
+        points,
+        &groups,
+        GroupOrigin::Clustered,
+        &camera,
+        thr_px,
+        &irls,
+    );
     Ok(Selection::of(labels))
 }
 
@@ -183,8 +203,10 @@ fn check_scene(camera: Camera, thr_px: f64) -> Result<(), SelectionError> {
 
 /// The motions among `groups` (lists of indices into the
 /// principal-point-centred `points`, e.g. T-Linkage's clusters, or those of
-/// a subset of the matches) by a-contrario detection over every match
-/// ([`nfa::detect`]), labelled so: a match
+/// a subset of the matches, `origin` saying which) by a-contrario
+/// detection over every match ([`nfa::detect`]; `camera` gives the
+/// background's domain and the focal prior of each group's semi-calibrated
+/// model), labelled so: a match
 /// of a detected group takes its motion; a group not detected joins, as a
 /// whole, the detected F that explains most of its matches within
 /// `thr_px` (those it explains take its label, the others the nearest
@@ -194,16 +216,18 @@ fn check_scene(camera: Camera, thr_px: f64) -> Result<(), SelectionError> {
 ///
 /// ```
 /// use geometry::Correspondences;
-/// use segmentation::selection::{select_groups, Camera};
+/// use segmentation::selection::{select_groups, Camera, GroupOrigin};
 /// // No group: no motion, every match an outlier.
 /// let p = [[0.0, 0.0]; 20];
 /// let pts = Correspondences::new(&p, &p).unwrap();
-/// let s = select_groups(&pts, &[], Camera::centred((640, 480)), 2.5).unwrap();
+/// let (origin, camera) = (GroupOrigin::Clustered, Camera::centred((640, 480)));
+/// let s = select_groups(&pts, &[], origin, camera, 2.5).unwrap();
 /// assert_eq!((s.motions, s.labels), (0, vec![-1; 20]));
 /// ```
 pub fn select_groups(
     points: &Correspondences,
     groups: &[Vec<usize>],
+    origin: GroupOrigin,
     camera: Camera,
     thr_px: f64,
 ) -> Result<Selection, SelectionError> {
@@ -215,7 +239,7 @@ pub fn select_groups(
     }
     check_scene(camera, thr_px)?;
     let irls = refit_params(thr_px);
-    let labels = by_nfa(points, groups, &camera, thr_px, &irls);
+    let labels = by_nfa(points, groups, origin, &camera, thr_px, &irls);
     Ok(Selection::of(labels))
 }
 
@@ -231,11 +255,12 @@ pub fn select_groups(
 fn by_nfa(
     points: &Correspondences,
     groups: &[Vec<usize>],
+    origin: GroupOrigin,
     camera: &Camera,
     thr_px: f64,
     irls: &IrlsParams,
 ) -> Vec<i32> {
-    let detections = nfa::detect(points, groups, camera, thr_px, irls);
+    let detections = nfa::detect(points, groups, origin, camera, thr_px, irls);
     let residuals: Vec<&Vec<f64>> = detections.iter().map(|d| &d.residuals).collect();
     let mut assigned = by_nearest_f(&residuals, points.len(), thr_px);
     let mut held = vec![false; points.len()];

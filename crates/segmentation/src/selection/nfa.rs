@@ -13,8 +13,8 @@ pub use super::background::{Background, ImageRect};
 use super::binomial::ln_binomial_tail;
 use super::coherence::ln_incoherence;
 use super::semicalibrated::{semicalibrated_fit, SEMICALIBRATED_FITTED};
-use super::Camera;
 use super::{refit, sampson_residuals};
+use super::{Camera, GroupOrigin};
 use geometry::{Correspondences, IrlsParams};
 use nalgebra::Matrix3;
 
@@ -122,7 +122,9 @@ pub struct Detection {
     pub group: usize,
     /// Its F: of its two models (its F refitted by IRLS-Tukey on its
     /// matches not explained by the detections before it, and its
-    /// semi-calibrated F) the one of smaller NFA, polished on its support.
+    /// semi-calibrated F) the one of smaller NFA, polished on its support
+    /// unless it is the semi-calibrated one of a [`GroupOrigin::Clustered`]
+    /// group.
     pub f: Matrix3<f64>,
     /// Its score given the detections before it.
     pub significance: Significance,
@@ -147,7 +149,13 @@ pub struct Detection {
 /// becomes explained): its F refitted by IRLS-Tukey, 7 fitted matches,
 /// and its semi-calibrated F `K⁻ᵀ E K⁻¹` at `camera.focal_px`, the best of
 /// its five-point candidates ([`semicalibrated_fit`]), 5 fitted matches;
-/// its NFA is the smaller of the two. So a fragment of a detected motion
+/// its NFA is the smaller of the two. A detected refitted F is polished on
+/// its support (`polish_on_support`); a detected semi-calibrated F only
+/// when the groups are [`GroupOrigin::Extended`], where a motion's matches
+/// beyond the clustered subset may lie in another group: polished into a
+/// free F on its support, a semi-calibrated F that every match was
+/// clustered for would reach into a neighbouring object's matches
+/// (results/notes/selection.md). So a fragment of a detected motion
 /// keeps no more than the few matches of its noise tail, and a mover
 /// beyond `thr_px` of the background's F keeps the matches there.
 ///
@@ -157,6 +165,7 @@ pub struct Detection {
 pub fn detect(
     points: &Correspondences,
     groups: &[Vec<usize>],
+    origin: GroupOrigin,
     camera: &Camera,
     thr_px: f64,
     irls: &IrlsParams,
@@ -206,39 +215,9 @@ pub fn detect(
         if !is_coherent(points, &groups[group], &explained, &fit.f, ln_groups) {
             continue;
         }
-        let proto = std::env::var("SCTL_PROTO_NOPOLISH_E").ok();
-        let unpolished = proto.as_deref() == Some("1")
-            || (proto.as_deref() == Some("subset") && points.len() <= 1000);
-        let (f, residuals) = if fit.fitted == SEMICALIBRATED_FITTED && unpolished {
-            (fit.f, fit.residuals)
-        } else if fit.fitted == SEMICALIBRATED_FITTED && proto.as_deref() == Some("lo") {
-            let (mut f, mut residuals) = (fit.f, fit.residuals);
-            for _ in 0..POLISH_ROUNDS {
-                let support: Vec<usize> = residuals
-                    .iter()
-                    .enumerate()
-                    .filter(|&(m, &r)| r <= thr_px && !explained.0[m])
-                    .map(|(m, _)| m)
-                    .collect();
-                let inliers = support.len();
-                let Some(s) = semicalibrated_fit(points, &support, camera.focal_px, thr_px) else {
-                    break;
-                };
-                let r = sampson_residuals(points, &s.f);
-                let count = r
-                    .iter()
-                    .zip(&explained.0)
-                    .filter(|(&r, &e)| r <= thr_px && !e)
-                    .count();
-                if count < inliers {
-                    break;
-                }
-                f = s.f;
-                residuals = r;
-            }
-            (f, residuals)
-        } else {
-            polish_on_support(points, fit.f, fit.residuals, &explained, thr_px, irls)
+        let (f, residuals) = match (fit.kind, origin) {
+            (ModelKind::Semicalibrated, GroupOrigin::Clustered) => (fit.f, fit.residuals),
+            _ => polish_on_support(points, fit.f, fit.residuals, &explained, thr_px, irls),
         };
         explained.add(&residuals, thr_px);
         detections.push(Detection {
@@ -329,16 +308,33 @@ struct GroupFit {
     models: Vec<Model>,
 }
 
+/// The two models of a group.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum ModelKind {
+    /// Its F refitted by IRLS-Tukey: 7 fitted matches, one candidate.
+    Refitted,
+    /// `K⁻ᵀ E K⁻¹` at the focal prior: 5 fitted matches, chosen among its
+    /// five-point candidates.
+    Semicalibrated,
+}
+
+impl ModelKind {
+    /// The matches its fit brings onto their lines whatever they are.
+    fn fitted(self) -> usize {
+        match self {
+            Self::Refitted => FITTED_MATCHES,
+            Self::Semicalibrated => SEMICALIBRATED_FITTED,
+        }
+    }
+}
+
 /// One model of a group, with what its NFA needs.
 struct Model {
+    kind: ModelKind,
     f: Matrix3<f64>,
     /// Sampson distances (px) of every match to `f`.
     residuals: Vec<f64>,
     background: Background,
-    /// The matches its fit brings onto their lines whatever they are:
-    /// [`FITTED_MATCHES`] for an F, [`SEMICALIBRATED_FITTED`] for
-    /// `K⁻ᵀ E K⁻¹`.
-    fitted: usize,
     /// ln of the number of candidates it was chosen among (0 for the
     /// refitted F, one candidate).
     ln_candidates: f64,
@@ -348,15 +344,15 @@ impl Model {
     fn new(
         points: &Correspondences,
         image: &ImageRect,
+        kind: ModelKind,
         f: Matrix3<f64>,
-        fitted: usize,
         candidates: usize,
     ) -> Self {
         Self {
+            kind,
             f,
             residuals: sampson_residuals(points, &f),
             background: Background::new(&f, image),
-            fitted,
             ln_candidates: (candidates as f64).ln(),
         }
     }
@@ -373,7 +369,8 @@ impl Model {
             .collect();
         r.sort_by(f64::total_cmp);
         let ln_tests = ln_tests + self.ln_candidates;
-        significance_fitted(&r, ln_tests, &self.background, thr_px, self.fitted)
+        let fitted = self.kind.fitted();
+        significance_fitted(&r, ln_tests, &self.background, thr_px, fitted)
     }
 }
 
@@ -423,17 +420,11 @@ fn fit_given<'a>(
     }
     if cache.as_ref().map(|c| c.own) != Some(own_len) {
         let own: Vec<usize> = explained.counting(group).collect();
-        let refitted = refit(points, &own, irls)
-            .map(|f| Model::new(points, &camera.image, f, FITTED_MATCHES, 1));
-        let semicalibrated = semicalibrated_fit(points, &own, camera.focal_px, thr_px).map(|s| {
-            Model::new(
-                points,
-                &camera.image,
-                s.f,
-                SEMICALIBRATED_FITTED,
-                s.candidates,
-            )
-        });
+        let image = &camera.image;
+        let refitted =
+            refit(points, &own, irls).map(|f| Model::new(points, image, ModelKind::Refitted, f, 1));
+        let semicalibrated = semicalibrated_fit(points, &own, camera.focal_px, thr_px)
+            .map(|s| Model::new(points, image, ModelKind::Semicalibrated, s.f, s.candidates));
         let models: Vec<Model> = refitted.into_iter().chain(semicalibrated).collect();
         let fit = (!models.is_empty()).then_some(GroupFit { models });
         *cache = Some(Cached { own: own_len, fit });
