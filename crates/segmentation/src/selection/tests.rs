@@ -353,3 +353,51 @@ fn bad_input_is_refused_by_name() {
         "selection: the focal prior must be a finite number of px > 0, got 0"
     );
 }
+
+/// A background of 300 matches, 100 outliers and an object of `k` matches
+/// at 8 px (median) from the background's F.
+fn small_object(k: usize, seed: u64) -> Scene {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut s = Scene::default();
+    s.add_motion(&mut rng, &background(), 300, (-300.0, 300.0));
+    let region = (60.0, 200.0);
+    s.add_motion(&mut rng, &mover_at(seed, 8.0, region), k, region);
+    s.add_outliers(&mut rng, 100);
+    s
+}
+
+#[test]
+fn a_small_object_whose_f_alone_is_not_significant_is_found_by_its_semicalibrated_model() {
+    // Objects of 10 and 15 matches (scenes where the refitted F is not
+    // enough; the focal prior 640 px, the scene's focal 700 px).
+    for (k, seed) in [(10, 4), (15, 1)] {
+        let s = small_object(k, seed);
+        let (points, groups) = (s.points(), groups_of(&s.truth));
+        let irls = refit_params(THR_PX);
+        let detections = nfa::detect(
+            &points,
+            &groups,
+            GroupOrigin::Clustered,
+            &camera(),
+            THR_PX,
+            &irls,
+        );
+        let found: Vec<usize> = detections.iter().map(|d| d.group).collect();
+        assert_eq!(found, [0, 1], "k {k}");
+        // The object's refitted F over the matches the background's F
+        // leaves, with 7 fitted matches and no second model's tests: NFA ≥ 1.
+        let f = refit(&points, &groups[1], &irls).unwrap();
+        let background_residuals = &detections[0].residuals;
+        let mut r: Vec<f64> = sampson_residuals(&points, &f)
+            .into_iter()
+            .zip(background_residuals)
+            .filter(|(_, &b)| b > THR_PX)
+            .map(|(r, _)| r)
+            .collect();
+        r.sort_by(f64::total_cmp);
+        let ln_tests = (2.0 * (points.len() - 7) as f64).ln();
+        let image = &camera().image;
+        let alone = nfa::significance(&r, ln_tests, &Background::new(&f, image), THR_PX);
+        assert!(!alone.is_significant(), "k {k}: {alone:?}");
+    }
+}
