@@ -1,19 +1,21 @@
 //! Model selection after the clustering: which of T-Linkage's clusters are
 //! motions, by a principle instead of size rules (`min_cluster_size`, a
 //! share of N, the merge's share of a cluster explained): a cluster is a
-//! motion when the number of false alarms of its F is below 1, given the
-//! motions detected before it ([`nfa::detect`]: Moisan & Stival 2004,
-//! AC-RANSAC 2012, MAC-RANSAC 2010) and its matches keep image-1
-//! neighbours near along the epipolar lines ([`coherence`]). GRIC merges (Torr 1998), alone or
-//! with the NFA, were measured and not adopted (results/README.md, "Tried
-//! and not adopted").
+//! motion when the number of false alarms of its F, or of its
+//! semi-calibrated F ([`semicalibrated`]), is below 1, given the motions
+//! detected before it ([`nfa::detect`]: Moisan & Stival 2004, AC-RANSAC
+//! 2012, MAC-RANSAC 2010) and its matches keep image-1 neighbours near
+//! along the epipolar lines ([`coherence`]). GRIC merges (Torr 1998),
+//! alone or with the NFA, were measured and not adopted (results/README.md,
+//! "Tried and not adopted").
 //!
 //! Matches of no motion are outliers. Pure functions of the matches
 //! (principal-point-centred, as [`crate::segment`] uses them), the
-//! clustering's labels or groups, the image's rectangle in that frame
-//! ([`ImageRect`]) and `thr_px`; every
-//! cluster's F is refitted here by IRLS-Tukey (docs/method.md, Algorithm 1
-//! step 3; [`CLUSTER_REFIT_ITERS`] iterations) on its matches alone.
+//! clustering's labels or groups and where they come from
+//! ([`GroupOrigin`]), the camera ([`Camera`]: the image's rectangle in that
+//! frame and the focal prior) and `thr_px`; every cluster's F is refitted
+//! here by IRLS-Tukey (docs/method.md, Algorithm 1 step 3;
+//! [`CLUSTER_REFIT_ITERS`] iterations) on its matches alone.
 
 mod background;
 mod binomial;
@@ -147,8 +149,9 @@ fn refit_params(thr_px: f64) -> IrlsParams {
 
 /// Motions and outliers from the clustering's `labels` (−1 outliers) of
 /// the principal-point-centred `points`, every match clustered:
-/// [`select_groups`] of the labels' clusters ([`GroupOrigin::Clustered`]); `camera` holds the images' rectangle in the points' frame
-/// (the background's domain) and the focal prior, `thr_px` is the inlier
+/// [`select_groups`] of the labels' clusters ([`GroupOrigin::Clustered`]);
+/// `camera` holds the images' rectangle in the points' frame (the
+/// background's domain) and the focal prior, `thr_px` is the inlier
 /// threshold (the NFA's largest threshold and the refits' inlier bound).
 pub fn select(
     points: &Correspondences,

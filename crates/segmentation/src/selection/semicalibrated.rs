@@ -11,7 +11,9 @@
 //! consensus, ties broken by MSAC's truncated cost, Torr & Zisserman 2000),
 //! and the NFA counts every candidate tried as a test. The focal prior need
 //! not be right: five-point hypotheses at 0.5–4× the true focal cost
-//! little (docs/method.md, "The focal prior").
+//! little (docs/method.md, the paragraph on the focal prior after "The
+//! default"), and this model at 0.5× or 2× max(W, H) moves no validation
+//! family by 0.2 points (results/notes/selection.md).
 
 use crate::minimal::candidates;
 use crate::{hypothesis_rng, splitmix64};
@@ -39,7 +41,9 @@ pub struct SemicalibratedFit {
 /// The F among the five-point candidates of [`SEMICALIBRATED_SAMPLES`]
 /// samples of `own` (indices into `points`, at least 5) at `focal_px` that
 /// puts the most of `own` within `thr_px` (Sampson distance), ties broken
-/// by the smaller truncated cost `Σ min(d², thr_px²)`. The samples are
+/// by the smaller truncated cost `Σ min(d², thr_px²)` (the hypotheses'
+/// choice among a sample's roots, `minimal.rs`, keeps the first on ties
+/// instead; this choice was measured as it is). The samples are
 /// drawn from a stream keyed by the group's indices, so the fit is a pure
 /// function of its input. None when no sample gives a candidate.
 pub fn semicalibrated_fit(
