@@ -120,6 +120,9 @@ pub struct Background {
     slopes: Vec<f64>,
     /// `prefix[i]` = sum of the `i` smallest slopes.
     prefix: Vec<f64>,
+    /// Prototype: p is the larger of this one's and `also`'s (weight
+    /// NaN), or their mixture with this weight on this one.
+    pub(super) also: Option<(Box<Background>, f64)>,
 }
 
 impl Background {
@@ -127,8 +130,13 @@ impl Background {
     /// matches' principal-point-centred frame). An `f` of zero or
     /// non-finite norm explains every match (`p = 1`).
     pub fn new(f: &Matrix3<f64>, image: &ImageRect) -> Self {
-        let [w, h] = image.sides();
-        let centre = image.centre();
+        Self::with_x1_in(f, image, image)
+    }
+
+    /// Prototype: x₁ uniform over `x1_rect`, x₂ over `image`.
+    pub(super) fn with_x1_in(f: &Matrix3<f64>, x1_rect: &ImageRect, image: &ImageRect) -> Self {
+        let [w, h] = x1_rect.sides();
+        let centre = x1_rect.centre();
         let norm = f.norm();
         let degenerate = !(norm.is_finite() && norm > 0.0);
         let f = if degenerate {
@@ -140,7 +148,7 @@ impl Background {
         // R2: the positive root of x³ = x + 1.
         let g: f64 = 1.324_717_957_244_746;
         let alpha = [1.0 / g, 1.0 / (g * g)];
-        let mut slopes: Vec<f64> = (1..=X1_SAMPLES)
+        let slopes: Vec<f64> = (1..=X1_SAMPLES)
             .map(|i| {
                 let u = alpha.map(|a| (0.5 + a * i as f64).fract());
                 let x1 = Vector3::new(
@@ -151,6 +159,11 @@ impl Background {
                 slope(&f, &ft, &x1, image)
             })
             .collect();
+        Self::from_slopes(slopes)
+    }
+
+    /// The background of the band slopes `c(x₁)` of some points x₁.
+    pub(super) fn from_slopes(mut slopes: Vec<f64>) -> Self {
         slopes.sort_by(f64::total_cmp);
         let mut prefix = Vec::with_capacity(slopes.len() + 1);
         prefix.push(0.0);
@@ -161,7 +174,11 @@ impl Background {
             }
             prefix.push(sum);
         }
-        Self { slopes, prefix }
+        Self {
+            slopes,
+            prefix,
+            also: None,
+        }
     }
 
     /// `p(ε) = mean over x₁ of min(1, ε c(x₁))`.
@@ -171,7 +188,12 @@ impl Background {
         }
         let below = self.slopes.partition_point(|&c| eps_px * c < 1.0);
         let p = eps_px * self.prefix[below] + (self.slopes.len() - below) as f64;
-        (p / self.slopes.len() as f64).min(1.0)
+        let p = (p / self.slopes.len() as f64).min(1.0);
+        match &self.also {
+            Some((b, w)) if w.is_nan() => p.max(b.probability(eps_px)),
+            Some((b, w)) => w * p + (1.0 - w) * b.probability(eps_px),
+            None => p,
+        }
     }
 }
 
@@ -206,7 +228,7 @@ fn slope(f: &Matrix3<f64>, ft: &Matrix3<f64>, x1: &Vector3<f64>, image: &ImageRe
 
 /// The segment of the line `l` (`l · (x, y, 1) = 0`, `g = l₁² + l₂² > 0`)
 /// inside `image`, or None when it misses it.
-fn clip(
+pub(super) fn clip(
     l: &Vector3<f64>,
     g: f64,
     image: &ImageRect,

@@ -22,6 +22,7 @@ mod binomial;
 pub mod coherence;
 #[cfg(test)]
 mod default_tests;
+mod empirical;
 pub mod nfa;
 pub mod semicalibrated;
 #[cfg(test)]

@@ -179,6 +179,7 @@ pub fn detect(
     }
     let ln_groups = (remaining.len() as f64).ln();
     let ln_tests = ln_groups + ((n - FITTED_MATCHES) as f64).ln();
+    let domain = Domain::new(points, &camera.image);
     let mut explained = Explained(vec![false; n]);
     let mut fits: Vec<Option<Cached>> = groups.iter().map(|_| None).collect();
     let mut detections = Vec::new();
@@ -193,6 +194,7 @@ pub fn detect(
                     &explained,
                     irls,
                     camera,
+                    &domain,
                     thr_px,
                     &mut fits[i],
                 )?;
@@ -282,6 +284,47 @@ fn polish_on_support(
     (f, residuals)
 }
 
+/// Prototype: the background's domain (SCTL_PROTO_EMP unset: uniform over
+/// the image; `1`: the data's marginals; `max`: the larger of the two).
+pub(super) struct Domain {
+    image: ImageRect,
+    empirical: Option<super::empirical::Empirical>,
+    /// NaN: max; else the empirical background's weight in a mixture.
+    weight: Option<f64>,
+}
+
+impl Domain {
+    fn new(points: &Correspondences, image: &ImageRect) -> Self {
+        let mode = std::env::var("SCTL_PROTO_EMP").unwrap_or_default();
+        let leave_out = mode == "loo";
+        let empirical =
+            (!mode.is_empty()).then(|| super::empirical::Empirical::new(points, image, leave_out));
+        Self {
+            image: *image,
+            empirical,
+            weight: if mode == "max" {
+                Some(f64::NAN)
+            } else {
+                mode.strip_prefix("mix")
+                    .map(|w| w.parse().expect("mix weight"))
+            },
+        }
+    }
+
+    fn background(&self, f: &Matrix3<f64>, group: &[usize]) -> Background {
+        match &self.empirical {
+            None => Background::new(f, &self.image),
+            Some(e) => {
+                let mut b = e.background(f, group);
+                if let Some(w) = self.weight {
+                    b.also = Some((Box::new(Background::new(f, &self.image)), w));
+                }
+                b
+            }
+        }
+    }
+}
+
 /// The matches the detections so far explain: within `thr_px` of a
 /// detected F.
 pub struct Explained(Vec<bool>);
@@ -338,12 +381,16 @@ struct Model {
     /// ln of the number of candidates it was chosen among (0 for the
     /// refitted F, one candidate).
     ln_candidates: f64,
+    /// Prototype: the matches whose image-1 point lies in its region, and
+    /// ln of the number of regions (None: the whole image).
+    region: Option<(Vec<bool>, f64)>,
 }
 
 impl Model {
     fn new(
         points: &Correspondences,
-        image: &ImageRect,
+        domain: &Domain,
+        group: &[usize],
         kind: ModelKind,
         f: Matrix3<f64>,
         candidates: usize,
@@ -352,8 +399,33 @@ impl Model {
             kind,
             f,
             residuals: sampson_residuals(points, &f),
-            background: Background::new(&f, image),
+            background: domain.background(&f, group),
             ln_candidates: (candidates as f64).ln(),
+            region: None,
+        }
+    }
+
+    /// Prototype: this model restricted to the matches of `rect`.
+    fn in_region(
+        &self,
+        points: &Correspondences,
+        image: &ImageRect,
+        rect: ImageRect,
+        ln_regions: f64,
+    ) -> Self {
+        let inside = (0..points.len())
+            .map(|m| {
+                let p = points.point1(m);
+                (0..2).all(|i| p[i] >= rect.min[i] && p[i] <= rect.max[i])
+            })
+            .collect();
+        Self {
+            kind: self.kind,
+            f: self.f,
+            residuals: self.residuals.clone(),
+            background: Background::with_x1_in(&self.f, &rect, image),
+            ln_candidates: self.ln_candidates,
+            region: Some((inside, ln_regions)),
         }
     }
 
@@ -364,11 +436,15 @@ impl Model {
             .residuals
             .iter()
             .zip(&explained.0)
-            .filter(|(_, &e)| !e)
-            .map(|(&r, _)| r)
+            .enumerate()
+            .filter(|(m, (_, &e))| {
+                !e && self.region.as_ref().map_or(true, |(inside, _)| inside[*m])
+            })
+            .map(|(_, (&r, _))| r)
             .collect();
         r.sort_by(f64::total_cmp);
-        let ln_tests = ln_tests + self.ln_candidates;
+        let ln_regions = self.region.as_ref().map_or(0.0, |(_, l)| *l);
+        let ln_tests = ln_tests + self.ln_candidates + ln_regions;
         let fitted = self.kind.fitted();
         significance_fitted(&r, ln_tests, &self.background, thr_px, fitted)
     }
@@ -383,7 +459,13 @@ impl GroupFit {
         ln_tests: f64,
         thr_px: f64,
     ) -> (Significance, usize) {
-        let ln_tests = ln_tests + (self.models.len() as f64).ln();
+        let variants =
+            if region_levels().is_some() && std::env::var("SCTL_PROTO_REGION_ALL4").is_ok() {
+                4.0
+            } else {
+                self.models.len() as f64
+            };
+        let ln_tests = ln_tests + variants.ln();
         self.models
             .iter()
             .enumerate()
@@ -404,12 +486,14 @@ struct Cached {
 /// The fit of `group` given `explained`, from `cache` when none of its
 /// matches became explained since; None when fewer than 8 of its matches
 /// count or the fit fails.
+#[allow(clippy::too_many_arguments)] // prototype: the domain
 fn fit_given<'a>(
     points: &Correspondences,
     group: &[usize],
     explained: &Explained,
     irls: &IrlsParams,
     camera: &Camera,
+    domain: &Domain,
     thr_px: f64,
     cache: &'a mut Option<Cached>,
 ) -> Option<&'a GroupFit> {
@@ -420,16 +504,83 @@ fn fit_given<'a>(
     }
     if cache.as_ref().map(|c| c.own) != Some(own_len) {
         let own: Vec<usize> = explained.counting(group).collect();
-        let image = &camera.image;
-        let refitted =
-            refit(points, &own, irls).map(|f| Model::new(points, image, ModelKind::Refitted, f, 1));
-        let semicalibrated = semicalibrated_fit(points, &own, camera.focal_px, thr_px)
-            .map(|s| Model::new(points, image, ModelKind::Semicalibrated, s.f, s.candidates));
-        let models: Vec<Model> = refitted.into_iter().chain(semicalibrated).collect();
+        let refitted = refit(points, &own, irls)
+            .map(|f| Model::new(points, domain, &own, ModelKind::Refitted, f, 1));
+        let semicalibrated = semicalibrated_fit(points, &own, camera.focal_px, thr_px).map(|s| {
+            Model::new(
+                points,
+                domain,
+                &own,
+                ModelKind::Semicalibrated,
+                s.f,
+                s.candidates,
+            )
+        });
+        let mut models: Vec<Model> = refitted.into_iter().chain(semicalibrated).collect();
+        if let Some(levels) = region_levels() {
+            if let Some(rect) = region_of(points, &own, &camera.image, levels) {
+                let ln_regions = ln_region_count(levels);
+                let local: Vec<Model> = models
+                    .iter()
+                    .map(|m| m.in_region(points, &camera.image, rect, ln_regions))
+                    .collect();
+                models.extend(local);
+            }
+        }
         let fit = (!models.is_empty()).then_some(GroupFit { models });
         *cache = Some(Cached { own: own_len, fit });
     }
     cache.as_ref().and_then(|c| c.fit.as_ref())
+}
+
+/// Prototype (SCTL_PROTO_REGION=L): the levels of the region family.
+fn region_levels() -> Option<u32> {
+    std::env::var("SCTL_PROTO_REGION")
+        .ok()
+        .and_then(|v| v.parse().ok())
+}
+
+/// The regions of the family: the whole image, and at each level
+/// l = 1..=L the (2^l − 1)² blocks of 2 × 2 cells of the 2^l × 2^l grid.
+fn ln_region_count(levels: u32) -> f64 {
+    let count: u64 = 1 + (1..=levels).map(|l| ((1u64 << l) - 1).pow(2)).sum::<u64>();
+    (count as f64).ln()
+}
+
+/// The smallest region of the family holding every image-1 point of
+/// `own`, None when only the whole image does.
+fn region_of(
+    points: &Correspondences,
+    own: &[usize],
+    image: &ImageRect,
+    levels: u32,
+) -> Option<ImageRect> {
+    let mut lo = [f64::INFINITY; 2];
+    let mut hi = [f64::NEG_INFINITY; 2];
+    for &m in own {
+        let p = points.point1(m);
+        for i in 0..2 {
+            lo[i] = lo[i].min(p[i]);
+            hi[i] = hi[i].max(p[i]);
+        }
+    }
+    let sides = image.sides();
+    for l in (1..=levels).rev() {
+        let cells = (1u64 << l) as f64;
+        let size = sides.map(|s| s / cells);
+        let start = [0, 1].map(|i| {
+            ((lo[i] - image.min[i]) / size[i])
+                .floor()
+                .clamp(0.0, cells - 2.0)
+        });
+        let fits = (0..2).all(|i| hi[i] <= image.min[i] + (start[i] + 2.0) * size[i]);
+        if fits {
+            let min = [0, 1].map(|i| image.min[i] + start[i] * size[i]);
+            let max = [0, 1].map(|i| min[i] + 2.0 * size[i]);
+            return Some(ImageRect { min, max });
+        }
+    }
+    None
 }
 
 #[cfg(test)]
