@@ -107,6 +107,11 @@ impl ImageRect {
         finite && self.sides().iter().all(|&s| s > 0.0)
     }
 
+    /// Whether `p` lies in it (its edges included).
+    pub fn contains(&self, p: [f64; 2]) -> bool {
+        (0..2).all(|i| p[i] >= self.min[i] && p[i] <= self.max[i])
+    }
+
     fn centre(&self) -> [f64; 2] {
         [0, 1].map(|i| (self.min[i] + self.max[i]) / 2.0)
     }
@@ -120,9 +125,6 @@ pub struct Background {
     slopes: Vec<f64>,
     /// `prefix[i]` = sum of the `i` smallest slopes.
     prefix: Vec<f64>,
-    /// Prototype: p is the larger of this one's and `also`'s (weight
-    /// NaN), or their mixture with this weight on this one.
-    pub(super) also: Option<(Box<Background>, f64)>,
 }
 
 impl Background {
@@ -133,10 +135,12 @@ impl Background {
         Self::with_x1_in(f, image, image)
     }
 
-    /// Prototype: x₁ uniform over `x1_rect`, x₂ over `image`.
-    pub(super) fn with_x1_in(f: &Matrix3<f64>, x1_rect: &ImageRect, image: &ImageRect) -> Self {
-        let [w, h] = x1_rect.sides();
-        let centre = x1_rect.centre();
+    /// The background of `f` for the matches whose image-1 point lies in
+    /// `x1_domain` (a block of the image, [`super::block`]): `x₁` uniform
+    /// over `x1_domain`, `x₂` over `image` as before.
+    pub fn with_x1_in(f: &Matrix3<f64>, x1_domain: &ImageRect, image: &ImageRect) -> Self {
+        let [w, h] = x1_domain.sides();
+        let centre = x1_domain.centre();
         let norm = f.norm();
         let degenerate = !(norm.is_finite() && norm > 0.0);
         let f = if degenerate {
@@ -148,7 +152,7 @@ impl Background {
         // R2: the positive root of x³ = x + 1.
         let g: f64 = 1.324_717_957_244_746;
         let alpha = [1.0 / g, 1.0 / (g * g)];
-        let slopes: Vec<f64> = (1..=X1_SAMPLES)
+        let mut slopes: Vec<f64> = (1..=X1_SAMPLES)
             .map(|i| {
                 let u = alpha.map(|a| (0.5 + a * i as f64).fract());
                 let x1 = Vector3::new(
@@ -159,11 +163,6 @@ impl Background {
                 slope(&f, &ft, &x1, image)
             })
             .collect();
-        Self::from_slopes(slopes)
-    }
-
-    /// The background of the band slopes `c(x₁)` of some points x₁.
-    pub(super) fn from_slopes(mut slopes: Vec<f64>) -> Self {
         slopes.sort_by(f64::total_cmp);
         let mut prefix = Vec::with_capacity(slopes.len() + 1);
         prefix.push(0.0);
@@ -174,11 +173,7 @@ impl Background {
             }
             prefix.push(sum);
         }
-        Self {
-            slopes,
-            prefix,
-            also: None,
-        }
+        Self { slopes, prefix }
     }
 
     /// `p(ε) = mean over x₁ of min(1, ε c(x₁))`.
@@ -188,12 +183,7 @@ impl Background {
         }
         let below = self.slopes.partition_point(|&c| eps_px * c < 1.0);
         let p = eps_px * self.prefix[below] + (self.slopes.len() - below) as f64;
-        let p = (p / self.slopes.len() as f64).min(1.0);
-        match &self.also {
-            Some((b, w)) if w.is_nan() => p.max(b.probability(eps_px)),
-            Some((b, w)) => w * p + (1.0 - w) * b.probability(eps_px),
-            None => p,
-        }
+        (p / self.slopes.len() as f64).min(1.0)
     }
 }
 
@@ -228,7 +218,7 @@ fn slope(f: &Matrix3<f64>, ft: &Matrix3<f64>, x1: &Vector3<f64>, image: &ImageRe
 
 /// The segment of the line `l` (`l · (x, y, 1) = 0`, `g = l₁² + l₂² > 0`)
 /// inside `image`, or None when it misses it.
-pub(super) fn clip(
+fn clip(
     l: &Vector3<f64>,
     g: f64,
     image: &ImageRect,
@@ -262,11 +252,27 @@ mod tests {
 
     /// The share of `pairs` uniform random matches within `eps` of `f`.
     fn monte_carlo(f: &Matrix3<f64>, image: &ImageRect, eps: f64, pairs: usize) -> f64 {
-        let (side, centre) = (image.sides(), image.centre());
+        monte_carlo_in(f, image, image, eps, pairs)
+    }
+
+    /// The same with x₁ uniform over `x1_domain`.
+    fn monte_carlo_in(
+        f: &Matrix3<f64>,
+        x1_domain: &ImageRect,
+        image: &ImageRect,
+        eps: f64,
+        pairs: usize,
+    ) -> f64 {
         let mut rng = ChaCha8Rng::seed_from_u64(7);
-        let mut point = || [0, 1].map(|i| centre[i] + rng.gen_range(-0.5..0.5) * side[i]);
+        let mut point = |r: &ImageRect| {
+            let (side, centre) = (r.sides(), r.centre());
+            [0, 1].map(|i| centre[i] + rng.gen_range(-0.5..0.5) * side[i])
+        };
         let within = (0..pairs)
-            .filter(|_| geometry::sampson_distance(f, point(), point()) <= eps)
+            .filter(|_| {
+                let x1 = point(x1_domain);
+                geometry::sampson_distance(f, x1, point(image)) <= eps
+            })
             .count();
         within as f64 / pairs as f64
     }
@@ -303,6 +309,32 @@ mod tests {
                     (band / mc - 1.0).abs() < 0.03,
                     "t {t:?} eps {eps}: {band} vs {mc}"
                 );
+            }
+        }
+    }
+
+    #[test]
+    fn x1_over_a_block_agrees_with_monte_carlo() {
+        let image = ImageRect::centred((640, 480));
+        // A corner block, and a central one holding the inside epipole
+        // (0.2 f, 0.1 f) and the forward motion's.
+        let blocks = [
+            ImageRect {
+                min: [-320.0, -240.0],
+                max: [-160.0, -120.0],
+            },
+            ImageRect {
+                min: [-80.0, -60.0],
+                max: [160.0, 120.0],
+            },
+        ];
+        for (t, f) in fundamentals() {
+            for block in &blocks {
+                let eps = 1.0;
+                let mc = monte_carlo_in(&f, block, &image, eps, 2_000_000);
+                let band = Background::with_x1_in(&f, block, &image).probability(eps);
+                eprintln!("t {t:?} block {block:?}: integral {band:.5}, Monte Carlo {mc:.5}");
+                assert!((band / mc - 1.0).abs() < 0.03, "t {t:?}: {band} vs {mc}");
             }
         }
     }

@@ -2,7 +2,9 @@
 //! motions, by a principle instead of size rules (`min_cluster_size`, a
 //! share of N, the merge's share of a cluster explained): a cluster is a
 //! motion when the number of false alarms of its F, or of its
-//! semi-calibrated F ([`semicalibrated`]), is below 1, given the motions
+//! semi-calibrated F ([`semicalibrated`]), over every match or over the
+//! matches of the block of the image its matches lie in ([`block`]), is
+//! below 1, given the motions
 //! detected before it ([`nfa::detect`]: Moisan & Stival 2004, AC-RANSAC
 //! 2012, MAC-RANSAC 2010) and its matches keep image-1 neighbours near
 //! along the epipolar lines ([`coherence`]). GRIC merges (Torr 1998),
@@ -19,10 +21,10 @@
 
 mod background;
 mod binomial;
+pub mod block;
 pub mod coherence;
 #[cfg(test)]
 mod default_tests;
-mod empirical;
 pub mod nfa;
 pub mod semicalibrated;
 #[cfg(test)]

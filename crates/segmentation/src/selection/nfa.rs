@@ -11,6 +11,7 @@
 
 pub use super::background::{Background, ImageRect};
 use super::binomial::ln_binomial_tail;
+use super::block::{block_count, inside, smallest_block};
 use super::coherence::ln_incoherence;
 use super::semicalibrated::{semicalibrated_fit, SEMICALIBRATED_FITTED};
 use super::{refit, sampson_residuals};
@@ -149,7 +150,11 @@ pub struct Detection {
 /// becomes explained): its F refitted by IRLS-Tukey, 7 fitted matches,
 /// and its semi-calibrated F `K⁻ᵀ E K⁻¹` at `camera.focal_px`, the best of
 /// its five-point candidates ([`semicalibrated_fit`]), 5 fitted matches;
-/// its NFA is the smaller of the two. A detected refitted F is polished on
+/// each model is tested over every match and, when the group's image-1
+/// points lie in a block of the image ([`super::block`]), over the
+/// matches of that block alone (x₁ uniform over it,
+/// [`Background::with_x1_in`]); the group's NFA is the smallest of these.
+/// A detected refitted F is polished on
 /// its support (`polish_on_support`); a detected semi-calibrated F only
 /// when the groups are [`GroupOrigin::Extended`], where a motion's matches
 /// beyond the clustered subset may lie in another group: polished into a
@@ -159,9 +164,11 @@ pub struct Detection {
 /// keeps no more than the few matches of its noise tail, and a mover
 /// beyond `thr_px` of the background's F keeps the matches there.
 ///
-/// The number of tests is `G · (N − 7) · 2`, times the candidates for the
-/// semi-calibrated model: G groups of at least 8 matches, N − 7 thresholds
-/// each, two models (a union bound).
+/// The number of tests is `G · (N − 7) · 2 · 2`, times the candidates for
+/// the semi-calibrated model and the [`block_count`] blocks for a test
+/// over a block: G groups of at least 8 matches, N − 7 thresholds each,
+/// two models, two scopes (the image, a block) weighted equally (a union
+/// bound).
 pub fn detect(
     points: &Correspondences,
     groups: &[Vec<usize>],
@@ -179,7 +186,6 @@ pub fn detect(
     }
     let ln_groups = (remaining.len() as f64).ln();
     let ln_tests = ln_groups + ((n - FITTED_MATCHES) as f64).ln();
-    let domain = Domain::new(points, &camera.image);
     let mut explained = Explained(vec![false; n]);
     let mut fits: Vec<Option<Cached>> = groups.iter().map(|_| None).collect();
     let mut detections = Vec::new();
@@ -194,7 +200,6 @@ pub fn detect(
                     &explained,
                     irls,
                     camera,
-                    &domain,
                     thr_px,
                     &mut fits[i],
                 )?;
@@ -284,47 +289,6 @@ fn polish_on_support(
     (f, residuals)
 }
 
-/// Prototype: the background's domain (SCTL_PROTO_EMP unset: uniform over
-/// the image; `1`: the data's marginals; `max`: the larger of the two).
-pub(super) struct Domain {
-    image: ImageRect,
-    empirical: Option<super::empirical::Empirical>,
-    /// NaN: max; else the empirical background's weight in a mixture.
-    weight: Option<f64>,
-}
-
-impl Domain {
-    fn new(points: &Correspondences, image: &ImageRect) -> Self {
-        let mode = std::env::var("SCTL_PROTO_EMP").unwrap_or_default();
-        let leave_out = mode == "loo";
-        let empirical =
-            (!mode.is_empty()).then(|| super::empirical::Empirical::new(points, image, leave_out));
-        Self {
-            image: *image,
-            empirical,
-            weight: if mode == "max" {
-                Some(f64::NAN)
-            } else {
-                mode.strip_prefix("mix")
-                    .map(|w| w.parse().expect("mix weight"))
-            },
-        }
-    }
-
-    fn background(&self, f: &Matrix3<f64>, group: &[usize]) -> Background {
-        match &self.empirical {
-            None => Background::new(f, &self.image),
-            Some(e) => {
-                let mut b = e.background(f, group);
-                if let Some(w) = self.weight {
-                    b.also = Some((Box::new(Background::new(f, &self.image)), w));
-                }
-                b
-            }
-        }
-    }
-}
-
 /// The matches the detections so far explain: within `thr_px` of a
 /// detected F.
 pub struct Explained(Vec<bool>);
@@ -344,12 +308,28 @@ impl Explained {
 
 /// The models a group is scored with, fitted on its matches that count:
 /// its F refitted by IRLS-Tukey and its semi-calibrated F
-/// ([`semicalibrated_fit`]). They change only when one of those matches
-/// becomes explained, so a round reuses the last round's fit of a group
-/// none of whose matches the last detection explained.
+/// ([`semicalibrated_fit`]), and the block those matches lie in. They
+/// change only when one of those matches becomes explained, so a round
+/// reuses the last round's fit of a group none of whose matches the last
+/// detection explained.
 struct GroupFit {
     models: Vec<Model>,
+    /// Per match: whether it lies in the group's block (None: no block
+    /// holds the group).
+    block: Option<Vec<bool>>,
 }
+
+/// Which matches a model is tested over.
+#[derive(Debug, Clone, Copy)]
+enum Scope<'a> {
+    /// Every match.
+    Image,
+    /// The matches of the group's block (the mask of [`inside`]).
+    Block(&'a [bool]),
+}
+
+/// The scopes of a group's tests: the image and a block.
+const SCOPES: f64 = 2.0;
 
 /// The two models of a group.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -378,19 +358,18 @@ struct Model {
     /// Sampson distances (px) of every match to `f`.
     residuals: Vec<f64>,
     background: Background,
+    /// Its background over the group's block, when one holds the group.
+    block_background: Option<Background>,
     /// ln of the number of candidates it was chosen among (0 for the
     /// refitted F, one candidate).
     ln_candidates: f64,
-    /// Prototype: the matches whose image-1 point lies in its region, and
-    /// ln of the number of regions (None: the whole image).
-    region: Option<(Vec<bool>, f64)>,
 }
 
 impl Model {
     fn new(
         points: &Correspondences,
-        domain: &Domain,
-        group: &[usize],
+        image: &ImageRect,
+        block: Option<&ImageRect>,
         kind: ModelKind,
         f: Matrix3<f64>,
         candidates: usize,
@@ -399,77 +378,62 @@ impl Model {
             kind,
             f,
             residuals: sampson_residuals(points, &f),
-            background: domain.background(&f, group),
+            background: Background::new(&f, image),
+            block_background: block.map(|b| Background::with_x1_in(&f, b, image)),
             ln_candidates: (candidates as f64).ln(),
-            region: None,
         }
     }
 
-    /// Prototype: this model restricted to the matches of `rect`.
-    fn in_region(
+    /// Its significance over the matches of `scope` that count,
+    /// `ln_tests` the tests beyond its own candidates and the blocks.
+    fn significance(
         &self,
-        points: &Correspondences,
-        image: &ImageRect,
-        rect: ImageRect,
-        ln_regions: f64,
-    ) -> Self {
-        let inside = (0..points.len())
-            .map(|m| {
-                let p = points.point1(m);
-                (0..2).all(|i| p[i] >= rect.min[i] && p[i] <= rect.max[i])
-            })
-            .collect();
-        Self {
-            kind: self.kind,
-            f: self.f,
-            residuals: self.residuals.clone(),
-            background: Background::with_x1_in(&self.f, &rect, image),
-            ln_candidates: self.ln_candidates,
-            region: Some((inside, ln_regions)),
-        }
-    }
-
-    /// Its significance over the matches that count, `ln_tests` the tests
-    /// beyond its own candidates.
-    fn significance(&self, explained: &Explained, ln_tests: f64, thr_px: f64) -> Significance {
+        explained: &Explained,
+        ln_tests: f64,
+        thr_px: f64,
+        scope: Scope,
+    ) -> Significance {
+        let (background, mask, ln_scope) = match (scope, &self.block_background) {
+            (Scope::Image, _) => (&self.background, None, 0.0),
+            (Scope::Block(mask), Some(b)) => (b, Some(mask), (block_count() as f64).ln()),
+            (Scope::Block(_), None) => return Significance::NONE,
+        };
         let mut r: Vec<f64> = self
             .residuals
             .iter()
             .zip(&explained.0)
             .enumerate()
-            .filter(|(m, (_, &e))| {
-                !e && self.region.as_ref().map_or(true, |(inside, _)| inside[*m])
-            })
+            .filter(|&(m, (_, &e))| !e && mask.map_or(true, |inside| inside[m]))
             .map(|(_, (&r, _))| r)
             .collect();
         r.sort_by(f64::total_cmp);
-        let ln_regions = self.region.as_ref().map_or(0.0, |(_, l)| *l);
-        let ln_tests = ln_tests + self.ln_candidates + ln_regions;
+        let ln_tests = ln_tests + self.ln_candidates + ln_scope;
         let fitted = self.kind.fitted();
-        significance_fitted(&r, ln_tests, &self.background, thr_px, fitted)
+        significance_fitted(&r, ln_tests, background, thr_px, fitted)
     }
 }
 
 impl GroupFit {
-    /// The smallest significance of its models, each NFA counting the
-    /// models as tests (a union bound), and which model it is.
+    /// The smallest significance of its models over the image and its
+    /// block, each NFA counting the models and the scopes as tests (a union
+    /// bound), and which model it is.
     fn significance(
         &self,
         explained: &Explained,
         ln_tests: f64,
         thr_px: f64,
     ) -> (Significance, usize) {
-        let variants =
-            if region_levels().is_some() && std::env::var("SCTL_PROTO_REGION_ALL4").is_ok() {
-                4.0
-            } else {
-                self.models.len() as f64
-            };
-        let ln_tests = ln_tests + variants.ln();
+        let ln_tests = ln_tests + (self.models.len() as f64 * SCOPES).ln();
+        let scopes = [Some(Scope::Image), self.block.as_deref().map(Scope::Block)];
         self.models
             .iter()
             .enumerate()
-            .map(|(i, m)| (m.significance(explained, ln_tests, thr_px), i))
+            .flat_map(|(i, m)| {
+                scopes
+                    .iter()
+                    .flatten()
+                    .map(move |&scope| (m.significance(explained, ln_tests, thr_px, scope), i))
+            })
             .min_by(|a, b| a.0.ln_nfa.total_cmp(&b.0.ln_nfa).then(a.1.cmp(&b.1)))
             .expect("a group fit has a model")
     }
@@ -486,14 +450,12 @@ struct Cached {
 /// The fit of `group` given `explained`, from `cache` when none of its
 /// matches became explained since; None when fewer than 8 of its matches
 /// count or the fit fails.
-#[allow(clippy::too_many_arguments)] // prototype: the domain
 fn fit_given<'a>(
     points: &Correspondences,
     group: &[usize],
     explained: &Explained,
     irls: &IrlsParams,
     camera: &Camera,
-    domain: &Domain,
     thr_px: f64,
     cache: &'a mut Option<Cached>,
 ) -> Option<&'a GroupFit> {
@@ -504,88 +466,63 @@ fn fit_given<'a>(
     }
     if cache.as_ref().map(|c| c.own) != Some(own_len) {
         let own: Vec<usize> = explained.counting(group).collect();
-        let refitted = refit(points, &own, irls)
-            .map(|f| Model::new(points, domain, &own, ModelKind::Refitted, f, 1));
-        let semicalibrated = semicalibrated_fit(points, &own, camera.focal_px, thr_px).map(|s| {
-            Model::new(
-                points,
-                domain,
-                &own,
-                ModelKind::Semicalibrated,
-                s.f,
-                s.candidates,
-            )
-        });
-        let mut models: Vec<Model> = refitted.into_iter().chain(semicalibrated).collect();
-        if let Some(levels) = region_levels() {
-            if let Some(rect) = region_of(points, &own, &camera.image, levels) {
-                let ln_regions = ln_region_count(levels);
-                let local: Vec<Model> = models
-                    .iter()
-                    .map(|m| m.in_region(points, &camera.image, rect, ln_regions))
-                    .collect();
-                models.extend(local);
-            }
-        }
-        let fit = (!models.is_empty()).then_some(GroupFit { models });
+        let image = &camera.image;
+        let block = smallest_block(points, &own, image);
+        let model =
+            |kind, f, candidates| Model::new(points, image, block.as_ref(), kind, f, candidates);
+        let refitted = refit(points, &own, irls).map(|f| model(ModelKind::Refitted, f, 1));
+        let semicalibrated = semicalibrated_fit(points, &own, camera.focal_px, thr_px)
+            .map(|s| model(ModelKind::Semicalibrated, s.f, s.candidates));
+        let models: Vec<Model> = refitted.into_iter().chain(semicalibrated).collect();
+        let block = block.map(|b| inside(points, &b));
+        let fit = (!models.is_empty()).then_some(GroupFit { models, block });
         *cache = Some(Cached { own: own_len, fit });
     }
     cache.as_ref().and_then(|c| c.fit.as_ref())
 }
 
-/// Prototype (SCTL_PROTO_REGION=L): the levels of the region family.
-fn region_levels() -> Option<u32> {
-    std::env::var("SCTL_PROTO_REGION")
-        .ok()
-        .and_then(|v| v.parse().ok())
-}
-
-/// The regions of the family: the whole image, and at each level
-/// l = 1..=L the (2^l − 1)² blocks of 2 × 2 cells of the 2^l × 2^l grid.
-fn ln_region_count(levels: u32) -> f64 {
-    let count: u64 = 1 + (1..=levels).map(|l| ((1u64 << l) - 1).pow(2)).sum::<u64>();
-    (count as f64).ln()
-}
-
-/// The smallest region of the family holding every image-1 point of
-/// `own`, None when only the whole image does.
-fn region_of(
-    points: &Correspondences,
-    own: &[usize],
-    image: &ImageRect,
-    levels: u32,
-) -> Option<ImageRect> {
-    let mut lo = [f64::INFINITY; 2];
-    let mut hi = [f64::NEG_INFINITY; 2];
-    for &m in own {
-        let p = points.point1(m);
-        for i in 0..2 {
-            lo[i] = lo[i].min(p[i]);
-            hi[i] = hi[i].max(p[i]);
-        }
-    }
-    let sides = image.sides();
-    for l in (1..=levels).rev() {
-        let cells = (1u64 << l) as f64;
-        let size = sides.map(|s| s / cells);
-        let start = [0, 1].map(|i| {
-            ((lo[i] - image.min[i]) / size[i])
-                .floor()
-                .clamp(0.0, cells - 2.0)
-        });
-        let fits = (0..2).all(|i| hi[i] <= image.min[i] + (start[i] + 2.0) * size[i]);
-        if fits {
-            let min = [0, 1].map(|i| image.min[i] + start[i] * size[i]);
-            let max = [0, 1].map(|i| min[i] + 2.0 * size[i]);
-            return Some(ImageRect { min, max });
-        }
-    }
-    None
-}
-
 #[cfg(test)]
 mod tests {
+    use super::super::tests::{camera, compact_object, THR_PX};
+    use super::super::{groups_of, refit_params};
     use super::*;
+
+    #[test]
+    fn a_compact_small_object_is_found_over_its_block_and_not_over_the_image() {
+        // Objects of 9 and 10 matches in an 80 × 80 px box (objects of 11
+        // or more at 8 px are significant over the image too).
+        for (k, seed) in [(9, 1), (10, 0), (10, 3)] {
+            let s = compact_object(k, seed);
+            let (points, groups) = (s.points(), groups_of(&s.truth));
+            let (camera, irls) = (camera(), refit_params(THR_PX));
+            let detections = detect(
+                &points,
+                &groups,
+                GroupOrigin::Clustered,
+                &camera,
+                THR_PX,
+                &irls,
+            );
+            let found: Vec<usize> = detections.iter().map(|d| d.group).collect();
+            assert_eq!(found, [0, 1], "k {k} seed {seed}");
+            // Given the background's F, each of the object's models over
+            // every match: NFA ≥ 1 (the tests of detect: 2 groups, N − 7
+            // thresholds, 2 models, 2 scopes).
+            let mut explained = Explained(vec![false; points.len()]);
+            explained.add(&detections[0].residuals, THR_PX);
+            let mut cache = None;
+            let fit = fit_given(
+                &points, &groups[1], &explained, &irls, &camera, THR_PX, &mut cache,
+            )
+            .expect("the object is fitted");
+            assert!(fit.block.is_some(), "k {k} seed {seed}: a block holds it");
+            let ln_tests = (2.0 * (points.len() - 7) as f64 * 4.0).ln();
+            for m in &fit.models {
+                let image = m.significance(&explained, ln_tests, THR_PX, Scope::Image);
+                assert!(!image.is_significant(), "k {k} seed {seed}: {image:?}");
+            }
+        }
+    }
 
     #[test]
     fn exact_support_is_meaningful_and_chance_support_is_not() {
