@@ -189,6 +189,9 @@ pub fn detect(
     let mut explained = Explained(vec![false; n]);
     let mut fits: Vec<Option<Cached>> = groups.iter().map(|_| None).collect();
     let mut detections = Vec::new();
+    let uniqueness = std::env::var("SCTL_PROTO_UNIQ")
+        .is_ok()
+        .then(|| Keypoints::new(points));
     loop {
         let best = remaining
             .iter()
@@ -226,6 +229,9 @@ pub fn detect(
             (ModelKind::Semicalibrated, GroupOrigin::Clustered) => (fit.f, fit.residuals),
             _ => polish_on_support(points, fit.f, fit.residuals, &explained, thr_px, irls),
         };
+        if let Some(keys) = &uniqueness {
+            explained.add_sharing(&residuals, thr_px, keys);
+        }
         explained.add(&residuals, thr_px);
         detections.push(Detection {
             group,
@@ -302,6 +308,65 @@ impl Explained {
     fn add(&mut self, residuals: &[f64], thr_px: f64) {
         for (e, &r) in self.0.iter_mut().zip(residuals) {
             *e |= r <= thr_px;
+        }
+    }
+
+    /// Prototype (SCTL_PROTO_UNIQ): the matches that share a keypoint with
+    /// a match the detection explains (and that it does not explain) stop
+    /// counting too: a keypoint has one correspondence (uniqueness).
+    fn add_sharing(&mut self, residuals: &[f64], thr_px: f64, keys: &Keypoints) {
+        let newly: Vec<usize> = (0..residuals.len())
+            .filter(|&m| residuals[m] <= thr_px && !self.0[m])
+            .collect();
+        for m in newly {
+            for side in 0..2 {
+                for &j in &keys.groups[side][keys.of[side][m]] {
+                    if residuals[j] > thr_px {
+                        self.0[j] = true;
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Prototype: the matches of each keypoint (coordinates equal to 0.01 px),
+/// per image.
+pub(super) struct Keypoints {
+    /// Per image, per match: its keypoint's index.
+    of: [Vec<usize>; 2],
+    /// Per image, per keypoint: its matches.
+    groups: [Vec<Vec<usize>>; 2],
+}
+
+impl Keypoints {
+    fn new(points: &Correspondences) -> Self {
+        let side = |which: usize| {
+            let mut index = std::collections::HashMap::new();
+            let mut groups: Vec<Vec<usize>> = Vec::new();
+            let of = (0..points.len())
+                .map(|m| {
+                    let p = if which == 0 {
+                        points.point1(m)
+                    } else {
+                        points.point2(m)
+                    };
+                    let key = ((p[0] * 100.0).round() as i64, (p[1] * 100.0).round() as i64);
+                    let k = *index.entry(key).or_insert_with(|| {
+                        groups.push(Vec::new());
+                        groups.len() - 1
+                    });
+                    groups[k].push(m);
+                    k
+                })
+                .collect();
+            (of, groups)
+        };
+        let (of1, g1) = side(0);
+        let (of2, g2) = side(1);
+        Self {
+            of: [of1, of2],
+            groups: [g1, g2],
         }
     }
 }
