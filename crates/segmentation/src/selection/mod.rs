@@ -4,12 +4,12 @@
 //! motion when the number of false alarms of its F, or of its
 //! semi-calibrated F ([`semicalibrated`]), over every match or over the
 //! matches of the block of the image its matches lie in ([`block`]), is
-//! below 1, given the motions
-//! detected before it ([`nfa::detect`]: Moisan & Stival 2004, AC-RANSAC
-//! 2012, MAC-RANSAC 2010) and its matches keep image-1 neighbours near
-//! along the epipolar lines ([`coherence`]). GRIC merges (Torr 1998),
-//! alone or with the NFA, were measured and not adopted (results/README.md,
-//! "Tried and not adopted").
+//! below 1, given the motions detected before it and the keypoints their
+//! matches hold ([`nfa::detect`]: Moisan & Stival 2004, AC-RANSAC 2012,
+//! MAC-RANSAC 2010; [`uniqueness`]), and its matches keep image-1
+//! neighbours near along the epipolar lines ([`coherence`]). GRIC merges
+//! (Torr 1998), alone or with the NFA, were measured and not adopted
+//! (results/README.md, "Tried and not adopted").
 //!
 //! Matches of no motion are outliers. Pure functions of the matches
 //! (principal-point-centred, as [`crate::segment`] uses them), the
@@ -29,6 +29,7 @@ pub mod nfa;
 pub mod semicalibrated;
 #[cfg(test)]
 mod tests;
+pub mod uniqueness;
 mod vote;
 
 pub use background::{Background, ImageRect};

@@ -14,6 +14,7 @@ use super::binomial::ln_binomial_tail;
 use super::block::{block_count, inside, smallest_block};
 use super::coherence::ln_incoherence;
 use super::semicalibrated::{semicalibrated_fit, SEMICALIBRATED_FITTED};
+use super::uniqueness::Keypoints;
 use super::{refit, sampson_residuals};
 use super::{Camera, GroupOrigin};
 use geometry::{Correspondences, IrlsParams};
@@ -145,7 +146,9 @@ pub struct Detection {
 /// when a detected F explains it: when it lies within `thr_px` of it (the
 /// inlier threshold of the preferences, Eq. 38; AC-RANSAC's own threshold
 /// of the detected F, smaller, would leave its noise tail to support a
-/// copy of it). A group is scored with two models fitted on its matches
+/// copy of it), or when it shares a keypoint with a match the detected F
+/// newly explained and lies beyond `thr_px` of that F (a keypoint has one
+/// correspondence, [`super::uniqueness`]). A group is scored with two models fitted on its matches
 /// that count (`fit_given`; the fits are reused while none of them
 /// becomes explained): its F refitted by IRLS-Tukey, 7 fitted matches,
 /// and its semi-calibrated F `K⁻ᵀ E K⁻¹` at `camera.focal_px`, the best of
@@ -186,12 +189,10 @@ pub fn detect(
     }
     let ln_groups = (remaining.len() as f64).ln();
     let ln_tests = ln_groups + ((n - FITTED_MATCHES) as f64).ln();
+    let keypoints = Keypoints::new(points);
     let mut explained = Explained(vec![false; n]);
     let mut fits: Vec<Option<Cached>> = groups.iter().map(|_| None).collect();
     let mut detections = Vec::new();
-    let uniqueness = std::env::var("SCTL_PROTO_UNIQ")
-        .is_ok()
-        .then(|| Keypoints::new(points));
     loop {
         let best = remaining
             .iter()
@@ -229,10 +230,7 @@ pub fn detect(
             (ModelKind::Semicalibrated, GroupOrigin::Clustered) => (fit.f, fit.residuals),
             _ => polish_on_support(points, fit.f, fit.residuals, &explained, thr_px, irls),
         };
-        if let Some(keys) = &uniqueness {
-            explained.add_sharing(&residuals, thr_px, keys);
-        }
-        explained.add(&residuals, thr_px);
+        explained.add(&residuals, thr_px, &keypoints);
         detections.push(Detection {
             group,
             f,
@@ -296,7 +294,8 @@ fn polish_on_support(
 }
 
 /// The matches the detections so far explain: within `thr_px` of a
-/// detected F.
+/// detected F, or sharing a keypoint with a match a detection explained
+/// when that detection's F leaves it beyond `thr_px` ([`super::uniqueness`]).
 pub struct Explained(Vec<bool>);
 
 impl Explained {
@@ -305,68 +304,20 @@ impl Explained {
         group.iter().copied().filter(|&m| !self.0[m])
     }
 
-    fn add(&mut self, residuals: &[f64], thr_px: f64) {
-        for (e, &r) in self.0.iter_mut().zip(residuals) {
-            *e |= r <= thr_px;
-        }
-    }
-
-    /// Prototype (SCTL_PROTO_UNIQ): the matches that share a keypoint with
-    /// a match the detection explains (and that it does not explain) stop
-    /// counting too: a keypoint has one correspondence (uniqueness).
-    fn add_sharing(&mut self, residuals: &[f64], thr_px: f64, keys: &Keypoints) {
+    /// The matches a detected F of Sampson distances `residuals` explains,
+    /// and those that share a keypoint with one it newly explains and
+    /// that it does not explain (a keypoint has one correspondence).
+    fn add(&mut self, residuals: &[f64], thr_px: f64, keypoints: &Keypoints) {
         let newly: Vec<usize> = (0..residuals.len())
             .filter(|&m| residuals[m] <= thr_px && !self.0[m])
             .collect();
-        for m in newly {
-            for side in 0..2 {
-                for &j in &keys.groups[side][keys.of[side][m]] {
-                    if residuals[j] > thr_px {
-                        self.0[j] = true;
-                    }
-                }
+        for &m in &newly {
+            for j in keypoints.sharing(m) {
+                self.0[j] |= residuals[j] > thr_px;
             }
         }
-    }
-}
-
-/// Prototype: the matches of each keypoint (coordinates equal to 0.01 px),
-/// per image.
-pub(super) struct Keypoints {
-    /// Per image, per match: its keypoint's index.
-    of: [Vec<usize>; 2],
-    /// Per image, per keypoint: its matches.
-    groups: [Vec<Vec<usize>>; 2],
-}
-
-impl Keypoints {
-    fn new(points: &Correspondences) -> Self {
-        let side = |which: usize| {
-            let mut index = std::collections::HashMap::new();
-            let mut groups: Vec<Vec<usize>> = Vec::new();
-            let of = (0..points.len())
-                .map(|m| {
-                    let p = if which == 0 {
-                        points.point1(m)
-                    } else {
-                        points.point2(m)
-                    };
-                    let key = ((p[0] * 100.0).round() as i64, (p[1] * 100.0).round() as i64);
-                    let k = *index.entry(key).or_insert_with(|| {
-                        groups.push(Vec::new());
-                        groups.len() - 1
-                    });
-                    groups[k].push(m);
-                    k
-                })
-                .collect();
-            (of, groups)
-        };
-        let (of1, g1) = side(0);
-        let (of2, g2) = side(1);
-        Self {
-            of: [of1, of2],
-            groups: [g1, g2],
+        for (e, &r) in self.0.iter_mut().zip(residuals) {
+            *e |= r <= thr_px;
         }
     }
 }
@@ -574,7 +525,7 @@ mod tests {
             // every match: NFA ≥ 1 (the tests of detect: 2 groups, N − 7
             // thresholds, 2 models, 2 scopes).
             let mut explained = Explained(vec![false; points.len()]);
-            explained.add(&detections[0].residuals, THR_PX);
+            explained.add(&detections[0].residuals, THR_PX, &Keypoints::new(&points));
             let mut cache = None;
             let fit = fit_given(
                 &points, &groups[1], &explained, &irls, &camera, THR_PX, &mut cache,

@@ -436,3 +436,50 @@ pub(super) fn compact_object(k: usize, seed: u64) -> Scene {
     s.add_outliers(&mut rng, 100);
     s
 }
+
+/// The background of [`small_object`] and a rigid mover of 30 matches at
+/// 8 px from it whose image-2 points are those of 30 background matches,
+/// moved by `shift` px (0: the same keypoints).
+fn mover_on_background_keypoints(shift: f64) -> Scene {
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    let mut s = Scene::default();
+    s.add_motion(&mut rng, &background(), 300, (-300.0, 300.0));
+    s.add_outliers(&mut rng, 100);
+    let mover = mover_at(5, 8.0, (-300.0, 300.0));
+    let noise = Normal::new(0.0, NOISE_PX).unwrap();
+    let mut added = 0;
+    for m in 0..300 {
+        // The scene point seen at the background match's image-2 point,
+        // at the mover's depth, back in image 1.
+        let p2 = s.p2[m];
+        let depth = rng.gen_range(mover.depth.0..mover.depth.1);
+        let x2 = Vector3::new(p2[0] / FOCAL * depth, p2[1] / FOCAL * depth, depth);
+        let x1 = mover.r.inverse() * (x2 - mover.t);
+        let p1 = [FOCAL * x1.x / x1.z, FOCAL * x1.y / x1.z];
+        if x1.z < 0.5 || p1[0].abs() > 319.0 || p1[1].abs() > 239.0 {
+            continue;
+        }
+        s.p1.push([
+            p1[0] + noise.sample(&mut rng),
+            p1[1] + noise.sample(&mut rng),
+        ]);
+        s.p2.push([p2[0] + shift, p2[1]]);
+        s.truth.push(1);
+        added += 1;
+        if added == 30 {
+            break;
+        }
+    }
+    assert_eq!(added, 30);
+    s
+}
+
+#[test]
+fn a_motion_made_of_keypoints_a_detected_motion_explains_is_not_detected() {
+    for (shift, expected) in [(0.0, 1), (1.0, 2)] {
+        let s = mover_on_background_keypoints(shift);
+        let labels: Vec<i32> = s.truth.clone();
+        let sel = select(&s.points(), &labels, camera(), THR_PX).unwrap();
+        assert_eq!(sel.motions, expected, "shift {shift}");
+    }
+}
