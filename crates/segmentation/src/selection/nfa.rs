@@ -148,17 +148,18 @@ pub struct Detection {
 /// of the detected F, smaller, would leave its noise tail to support a
 /// copy of it), or when it shares a keypoint with a match the detected F
 /// newly explained and lies beyond `thr_px` of that F (a keypoint has one
-/// correspondence, [`super::uniqueness`]). A group is scored with two models fitted on its matches
-/// that count (`fit_given`; the fits are reused while none of them
-/// becomes explained): its F refitted by IRLS-Tukey, 7 fitted matches,
+/// correspondence, [`super::uniqueness`]). A group is scored with two
+/// models fitted on its matches that count (`fit_given`; the fits are
+/// reused while none of them becomes explained): its F refitted by
+/// IRLS-Tukey, 7 fitted matches,
 /// and its semi-calibrated F `K⁻ᵀ E K⁻¹` at `camera.focal_px`, the best of
 /// its five-point candidates ([`semicalibrated_fit`]), 5 fitted matches;
 /// each model is tested over every match and, when the group's image-1
 /// points lie in a block of the image ([`super::block`]), over the
 /// matches of that block alone (x₁ uniform over it,
 /// [`Background::with_x1_in`]); the group's NFA is the smallest of these.
-/// A detected refitted F is polished on
-/// its support (`polish_on_support`); a detected semi-calibrated F only
+/// A detected refitted F is polished on its support
+/// (`polish_on_support`); a detected semi-calibrated F only
 /// when the groups are [`GroupOrigin::Extended`], where a motion's matches
 /// beyond the clustered subset may lie in another group: polished into a
 /// free F on its support, a semi-calibrated F that every match was

@@ -375,15 +375,20 @@ fn bad_input_is_refused_by_name() {
 }
 
 /// A background of 300 matches, 100 outliers and an object of `k` matches
-/// at 8 px (median) from the background's F.
-fn small_object(k: usize, seed: u64) -> Scene {
+/// at 8 px (median) from the background's F whose image-1 points lie in
+/// the box `u × v`.
+fn object_in(k: usize, seed: u64, u: (f64, f64), v: (f64, f64)) -> Scene {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut s = Scene::default();
     s.add_motion(&mut rng, &background(), 300, (-300.0, 300.0));
-    let region = (60.0, 200.0);
-    s.add_motion(&mut rng, &mover_at(seed, 8.0, region), k, region);
+    s.add_motion_in(&mut rng, &mover_at(seed, 8.0, u), k, u, v);
     s.add_outliers(&mut rng, 100);
     s
+}
+
+/// [`object_in`] a strip 140 px wide and the image's height.
+fn small_object(k: usize, seed: u64) -> Scene {
+    object_in(k, seed, (60.0, 200.0), (-230.0, 230.0))
 }
 
 #[test]
@@ -423,18 +428,9 @@ fn a_small_object_whose_f_alone_is_not_significant_is_found_by_its_semicalibrate
     }
 }
 
-/// A background of 300 matches, 100 outliers and an object of `k` matches
-/// at 8 px (median) from the background's F whose image-1 points lie in a
-/// box of 80 × 80 px.
+/// [`object_in`] a box of 80 × 80 px.
 pub(super) fn compact_object(k: usize, seed: u64) -> Scene {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut s = Scene::default();
-    s.add_motion(&mut rng, &background(), 300, (-300.0, 300.0));
-    let (u, v) = ((60.0, 140.0), (-100.0, -20.0));
-    let mover = mover_at(seed, 8.0, u);
-    s.add_motion_in(&mut rng, &mover, k, u, v);
-    s.add_outliers(&mut rng, 100);
-    s
+    object_in(k, seed, (60.0, 140.0), (-100.0, -20.0))
 }
 
 /// The background of [`small_object`] and a rigid mover of 30 matches at
