@@ -166,9 +166,10 @@ pub fn select(
     check(points, labels, camera, thr_px)?;
     let irls = refit_params(thr_px);
     let groups = groups_of(labels);
-    let labels = by_nfa(
+    let labels = by_nfa_split(
         points,
         &groups,
+        &[],
         GroupOrigin::Clustered,
         &camera,
         thr_px,
@@ -244,9 +245,27 @@ pub fn select_groups(
             points: points.len(),
         });
     }
+    select_groups_split(points, groups, &[], origin, camera, thr_px)
+}
+
+/// Prototype: [`select_groups`] with each group's two parts ([`nfa::detect_split`]).
+pub fn select_groups_split(
+    points: &Correspondences,
+    groups: &[Vec<usize>],
+    splits: &[nfa::Split],
+    origin: GroupOrigin,
+    camera: Camera,
+    thr_px: f64,
+) -> Result<Selection, SelectionError> {
+    if let Some(&index) = groups.iter().flatten().find(|&&m| m >= points.len()) {
+        return Err(SelectionError::BadIndex {
+            index,
+            points: points.len(),
+        });
+    }
     check_scene(camera, thr_px)?;
     let irls = refit_params(thr_px);
-    let labels = by_nfa(points, groups, origin, &camera, thr_px, &irls);
+    let labels = by_nfa_split(points, groups, splits, origin, &camera, thr_px, &irls);
     Ok(Selection::of(labels))
 }
 
@@ -259,15 +278,18 @@ pub fn select_groups(
 /// outlier. Last, a match labelled by the nearest F alone (its group, if
 /// any, did not bring it to that F) that several detected Fs explain takes
 /// the label of its neighbours among those ([`vote::vote_ambiguous`]).
-fn by_nfa(
+fn by_nfa_split(
     points: &Correspondences,
     groups: &[Vec<usize>],
+    splits: &[nfa::Split],
     origin: GroupOrigin,
     camera: &Camera,
     thr_px: f64,
     irls: &IrlsParams,
 ) -> Vec<i32> {
-    let detections = nfa::detect(points, groups, origin, camera, thr_px, irls);
+    let (detections, groups) =
+        nfa::detect_split(points, groups, splits, origin, camera, thr_px, irls);
+    let groups = &groups[..];
     let residuals: Vec<&Vec<f64>> = detections.iter().map(|d| &d.residuals).collect();
     let mut assigned = by_nearest_f(&residuals, points.len(), thr_px);
     let mut held = vec![false; points.len()];

@@ -181,12 +181,43 @@ pub fn detect(
     thr_px: f64,
     irls: &IrlsParams,
 ) -> Vec<Detection> {
+    detect_split(points, groups, &[], origin, camera, thr_px, irls).0
+}
+
+/// Two parts of a group: the two clusters whose merge made it (prototype).
+pub type Split = Option<Box<SplitNode>>;
+
+/// A merge of the clustering: its two sides and their own last merges.
+#[derive(Debug, Clone)]
+pub struct SplitNode {
+    /// The two sides' matches.
+    pub parts: [Vec<usize>; 2],
+    /// Each side's own split.
+    pub below: [Split; 2],
+}
+
+/// Prototype (`SCTL_PROTO_SPLIT`): [`detect`], a group about to be
+/// detected replaced by its two parts (`splits`) when the parts' NFAs,
+/// the second given the first, multiply to less than the group's.
+/// Returns the detections and the groups, the parts appended.
+pub fn detect_split(
+    points: &Correspondences,
+    groups: &[Vec<usize>],
+    splits: &[Split],
+    origin: GroupOrigin,
+    camera: &Camera,
+    thr_px: f64,
+    irls: &IrlsParams,
+) -> (Vec<Detection>, Vec<Vec<usize>>) {
+    let mut groups = groups.to_vec();
+    let mut splits = splits.to_vec();
+    splits.resize(groups.len(), None);
     let n = points.len();
     let mut remaining: Vec<usize> = (0..groups.len())
         .filter(|&i| groups[i].len() > FITTED_MATCHES)
         .collect();
     if remaining.is_empty() || n <= FITTED_MATCHES {
-        return Vec::new();
+        return (Vec::new(), groups);
     }
     let ln_groups = (remaining.len() as f64).ln();
     let ln_tests = ln_groups + ((n - FITTED_MATCHES) as f64).ln();
@@ -219,18 +250,94 @@ pub fn detect(
             break;
         }
         remaining.swap_remove(pos);
-        let fit = fits[group]
+        if let Some(node) = splits[group].clone() {
+            let SplitNode { parts, below } = *node;
+            if split_wins(
+                points,
+                &parts,
+                &explained,
+                irls,
+                camera,
+                thr_px,
+                ln_tests,
+                &keypoints,
+                significance.ln_nfa,
+            ) {
+                fits[group] = None;
+                let recursive = std::env::var("SCTL_PROTO_SPLIT").as_deref() == Ok("2");
+                for (part, below) in parts.into_iter().zip(below) {
+                    remaining.push(groups.len());
+                    groups.push(part);
+                    splits.push(if recursive { below } else { None });
+                    fits.push(None);
+                }
+                continue;
+            }
+        }
+        let gfit = fits[group]
             .take()
             .and_then(|c| c.fit)
-            .and_then(|g| g.models.into_iter().nth(model))
             .expect("a scored group has its fit");
+        let excl = std::env::var("SCTL_PROTO_EXCL").is_ok();
+        let excl_clustered = std::env::var("SCTL_PROTO_EXCL").as_deref() == Ok("clustered");
+        let rivals = if excl && (!excl_clustered || origin == GroupOrigin::Clustered) {
+            let ctx = Ctx {
+                points,
+                groups: &groups,
+                irls,
+                camera,
+                thr_px,
+                ln_tests,
+                keypoints: &keypoints,
+            };
+            excluded_rivals(
+                &ctx,
+                &remaining,
+                group,
+                &gfit,
+                model,
+                &explained,
+                significance.ln_nfa,
+            )
+        } else {
+            Vec::new()
+        };
+        let mut barred = explained.clone();
+        for &h in &rivals {
+            for &m in &groups[h] {
+                barred.0[m] = true;
+            }
+        }
+        let (significance, model) = if rivals.is_empty() {
+            (significance, model)
+        } else {
+            gfit.significance(&barred, ln_tests, thr_px)
+        };
+        let fit = gfit.models.into_iter().nth(model).expect("a model");
         if !is_coherent(points, &groups[group], &explained, &fit.f, ln_groups) {
             continue;
         }
-        let (f, residuals) = match (fit.kind, origin) {
-            (ModelKind::Semicalibrated, GroupOrigin::Clustered) => (fit.f, fit.residuals),
-            _ => polish_on_support(points, fit.f, fit.residuals, &explained, thr_px, irls),
+        let proto = std::env::var("SCTL_PROTO_POLISH").unwrap_or_default();
+        let (f, mut residuals) = match (fit.kind, origin, proto.as_str()) {
+            (ModelKind::Semicalibrated, GroupOrigin::Clustered, _) => (fit.f, fit.residuals),
+            (_, GroupOrigin::Clustered, "none") => (fit.f, fit.residuals),
+            (_, _, "own") => {
+                // Other undetected groups' matches are not support.
+                let mut barred = explained.clone();
+                for &g in &remaining {
+                    for &m in &groups[g] {
+                        barred.0[m] = true;
+                    }
+                }
+                polish_on_support(points, fit.f, fit.residuals, &barred, thr_px, irls)
+            }
+            _ => polish_on_support(points, fit.f, fit.residuals, &barred, thr_px, irls),
         };
+        for &h in &rivals {
+            for &m in &groups[h] {
+                residuals[m] = f64::INFINITY;
+            }
+        }
         explained.add(&residuals, thr_px, &keypoints);
         detections.push(Detection {
             group,
@@ -239,7 +346,126 @@ pub fn detect(
             residuals,
         });
     }
-    detections
+    (detections, groups)
+}
+
+/// What the exclusion test needs (prototype).
+struct Ctx<'a> {
+    points: &'a Correspondences,
+    groups: &'a [Vec<usize>],
+    irls: &'a IrlsParams,
+    camera: &'a Camera,
+    thr_px: f64,
+    ln_tests: f64,
+    keypoints: &'a Keypoints,
+}
+
+/// Prototype (`SCTL_PROTO_EXCL`): the remaining groups whose matches the
+/// detected group's model explains (most of those that count) but that
+/// are more meaningful apart: `NFA(group without h) · NFA(h | group) <
+/// NFA(group)` (the merging criterion of Cao, Delon, Desolneux, Musé &
+/// Sur 2007, a pair against its union).
+fn excluded_rivals(
+    ctx: &Ctx,
+    remaining: &[usize],
+    group: usize,
+    gfit: &GroupFit,
+    model: usize,
+    explained: &Explained,
+    ln_union: f64,
+) -> Vec<usize> {
+    let r = &gfit.models[model].residuals;
+    let mut out = Vec::new();
+    for &h in remaining {
+        if h == group {
+            continue;
+        }
+        let own: Vec<usize> = explained.counting(&ctx.groups[h]).collect();
+        let within = own.iter().filter(|&&m| r[m] <= ctx.thr_px).count();
+        if own.len() <= FITTED_MATCHES || 2 * within <= own.len() {
+            continue;
+        }
+        let mut barred = explained.clone();
+        for &m in &ctx.groups[h] {
+            barred.0[m] = true;
+        }
+        let (s_g, m_g) = gfit.significance(&barred, ctx.ln_tests, ctx.thr_px);
+        if !s_g.is_significant() {
+            continue;
+        }
+        let mut given = explained.clone();
+        let mut rg = gfit.models[m_g].residuals.clone();
+        for &m in &ctx.groups[h] {
+            rg[m] = f64::INFINITY;
+        }
+        given.add(&rg, ctx.thr_px, ctx.keypoints);
+        let mut cache = None;
+        let Some(hfit) = fit_given(
+            ctx.points,
+            &ctx.groups[h],
+            &given,
+            ctx.irls,
+            ctx.camera,
+            ctx.thr_px,
+            &mut cache,
+        ) else {
+            continue;
+        };
+        let (s_h, _) = hfit.significance(&given, ctx.ln_tests, ctx.thr_px);
+        if std::env::var("SCTL_DBG").is_ok() {
+            eprintln!("rival {h} of {group}: g {:.1} (eps {:.2} k {}) h {:.1} (eps {:.2} k {}) union {:.1}", s_g.ln_nfa, s_g.threshold_px, s_g.support, s_h.ln_nfa, s_h.threshold_px, s_h.support, ln_union);
+        }
+        let once = std::env::var("SCTL_PROTO_EXCL_PAIR").as_deref() == Ok("once");
+        let pair = if once {
+            s_g.ln_nfa + s_h.ln_nfa - ctx.ln_tests + (remaining.len() as f64).ln()
+        } else {
+            s_g.ln_nfa + s_h.ln_nfa
+        };
+        if s_h.is_significant() && pair < ln_union {
+            out.push(h);
+        }
+    }
+    out
+}
+
+/// Whether two parts of a group are more meaningful than the group: both
+/// significant, the second given the first's model, and the product of
+/// their NFAs below the group's (`ln_group`).
+#[allow(clippy::too_many_arguments)]
+fn split_wins(
+    points: &Correspondences,
+    parts: &[Vec<usize>; 2],
+    explained: &Explained,
+    irls: &IrlsParams,
+    camera: &Camera,
+    thr_px: f64,
+    ln_tests: f64,
+    keypoints: &Keypoints,
+    ln_group: f64,
+) -> bool {
+    let score = |part: &[usize], explained: &Explained| {
+        let mut cache = None;
+        let fit = fit_given(points, part, explained, irls, camera, thr_px, &mut cache)?;
+        let (s, model) = fit.significance(explained, ln_tests, thr_px);
+        Some((s, fit.models[model].residuals.clone()))
+    };
+    let (Some(a), Some(b)) = (score(&parts[0], explained), score(&parts[1], explained)) else {
+        return false;
+    };
+    let (first, second) = if a.0.ln_nfa <= b.0.ln_nfa {
+        (a, &parts[1])
+    } else {
+        (b, &parts[0])
+    };
+    if !first.0.is_significant() {
+        return false;
+    }
+    let mut given = explained.clone();
+    given.add(&first.1, thr_px, keypoints);
+    let Some((s2, _)) = score(second, &given) else {
+        return false;
+    };
+    s2.is_significant() && first.0.ln_nfa + s2.ln_nfa < ln_group
 }
 
 /// Whether the matches of `group` that count map image-1 neighbours to
@@ -297,6 +523,7 @@ fn polish_on_support(
 /// The matches the detections so far explain: within `thr_px` of a
 /// detected F, or sharing a keypoint with a match a detection explained
 /// when that detection's F leaves it beyond `thr_px` ([`super::uniqueness`]).
+#[derive(Clone)]
 pub struct Explained(Vec<bool>);
 
 impl Explained {
