@@ -4,7 +4,7 @@
 use crate::assignment::members;
 use crate::memory_guard::{memory_limit, ASSUMED_PREFERENCE_DENSITY};
 use crate::merge::inlier_words;
-use crate::selection::{Camera, GroupOrigin, ImageRect};
+use crate::selection::{select_groups, Camera, GroupOrigin, ImageRect};
 use crate::{
     available_memory, centred_points, check_available_memory, check_matches,
     estimate_hypothesis_focals, extend_labels, focal_filter, generate_hypotheses_cancellable,
@@ -272,7 +272,7 @@ fn cluster_kept(
             &step7.inliers,
         )),
         FinalAssignment::None | FinalAssignment::Nfa => {
-            (clustering.labels.clone(), clustering.clusters_after_filter)
+            (clustering.labels, clustering.clusters_after_filter)
         }
     };
     let (labels, all_points) = if subset_active {
@@ -303,26 +303,7 @@ fn cluster_kept(
         } else {
             GroupOrigin::Clustered
         };
-        let splits = if std::env::var("SCTL_PROTO_SPLIT").is_ok() {
-            let min = crate::selection::nfa::FITTED_MATCHES + 1;
-            top_splits(
-                &clustering.merges,
-                &clustering.labels,
-                clusters,
-                min,
-                &generated.subset,
-            )
-        } else {
-            Vec::new()
-        };
-        let selected = crate::selection::select_groups_split(
-            &all_points,
-            &groups,
-            &splits,
-            origin,
-            camera,
-            thr,
-        )?;
+        let selected = select_groups(&all_points, &groups, origin, camera, thr)?;
         (selected.labels, selected.motions)
     } else {
         (labels, clusters)
@@ -332,45 +313,6 @@ fn cluster_kept(
     segmentation.clusters_before_filter = clustering.clusters_before_filter;
     segmentation.labels = labels;
     Ok(())
-}
-
-/// Prototype: per cluster `0..clusters` of `labels` (the clustering's,
-/// over the clustered subset), the two clusters of its last merge whose
-/// both sides held at least `min` points, as match indices (`subset`).
-fn top_splits(
-    merges: &[clustering::Merge],
-    labels: &[i32],
-    clusters: usize,
-    min: usize,
-    subset: &[usize],
-) -> Vec<crate::selection::nfa::Split> {
-    let n = labels.len();
-    let mut members: Vec<Vec<usize>> = (0..n).map(|i| vec![i]).collect();
-    let mut last: Vec<crate::selection::nfa::Split> = vec![None; n];
-    let map = |v: &[usize]| v.iter().map(|&i| subset[i]).collect::<Vec<_>>();
-    for m in merges {
-        let removed = std::mem::take(&mut members[m.removed]);
-        let below_removed = last[m.removed].take();
-        if members[m.kept].len() >= min && removed.len() >= min {
-            let node = crate::selection::nfa::SplitNode {
-                parts: [map(&members[m.kept]), map(&removed)],
-                below: [last[m.kept].take(), below_removed],
-            };
-            last[m.kept] = Some(Box::new(node));
-        } else if removed.len() > members[m.kept].len() {
-            last[m.kept] = below_removed;
-        }
-        members[m.kept].extend(removed);
-    }
-    let mut out = vec![None; clusters];
-    for (i, &l) in labels.iter().enumerate() {
-        if let Ok(l) = usize::try_from(l) {
-            if l < clusters && out[l].is_none() {
-                out[l] = Some(last[i].take());
-            }
-        }
-    }
-    out.into_iter().map(|s| s.flatten()).collect()
 }
 
 /// What step 7 gives steps 8–9: the preferences, the inlier sets of the

@@ -7,7 +7,9 @@
 //! below 1, given the motions detected before it and the keypoints their
 //! matches hold ([`nfa::detect`]: Moisan & Stival 2004, AC-RANSAC 2012,
 //! MAC-RANSAC 2010; [`uniqueness`]), and its matches keep image-1
-//! neighbours near along the epipolar lines ([`coherence`]). GRIC merges
+//! neighbours near along the epipolar lines ([`coherence`]); two clusters
+//! one detected F explains are kept apart when the pair is more
+//! meaningful than the union ([`exclusion`], Cao et al. 2007). GRIC merges
 //! (Torr 1998), alone or with the NFA, were measured and not adopted
 //! (results/README.md, "Tried and not adopted").
 //!
@@ -25,6 +27,7 @@ pub mod block;
 pub mod coherence;
 #[cfg(test)]
 mod default_tests;
+pub mod exclusion;
 pub mod nfa;
 pub mod semicalibrated;
 #[cfg(test)]
@@ -166,10 +169,9 @@ pub fn select(
     check(points, labels, camera, thr_px)?;
     let irls = refit_params(thr_px);
     let groups = groups_of(labels);
-    let labels = by_nfa_split(
+    let labels = by_nfa(
         points,
         &groups,
-        &[],
         GroupOrigin::Clustered,
         &camera,
         thr_px,
@@ -245,27 +247,9 @@ pub fn select_groups(
             points: points.len(),
         });
     }
-    select_groups_split(points, groups, &[], origin, camera, thr_px)
-}
-
-/// Prototype: [`select_groups`] with each group's two parts ([`nfa::detect_split`]).
-pub fn select_groups_split(
-    points: &Correspondences,
-    groups: &[Vec<usize>],
-    splits: &[nfa::Split],
-    origin: GroupOrigin,
-    camera: Camera,
-    thr_px: f64,
-) -> Result<Selection, SelectionError> {
-    if let Some(&index) = groups.iter().flatten().find(|&&m| m >= points.len()) {
-        return Err(SelectionError::BadIndex {
-            index,
-            points: points.len(),
-        });
-    }
     check_scene(camera, thr_px)?;
     let irls = refit_params(thr_px);
-    let labels = by_nfa_split(points, groups, splits, origin, &camera, thr_px, &irls);
+    let labels = by_nfa(points, groups, origin, &camera, thr_px, &irls);
     Ok(Selection::of(labels))
 }
 
@@ -278,18 +262,15 @@ pub fn select_groups_split(
 /// outlier. Last, a match labelled by the nearest F alone (its group, if
 /// any, did not bring it to that F) that several detected Fs explain takes
 /// the label of its neighbours among those ([`vote::vote_ambiguous`]).
-fn by_nfa_split(
+fn by_nfa(
     points: &Correspondences,
     groups: &[Vec<usize>],
-    splits: &[nfa::Split],
     origin: GroupOrigin,
     camera: &Camera,
     thr_px: f64,
     irls: &IrlsParams,
 ) -> Vec<i32> {
-    let (detections, groups) =
-        nfa::detect_split(points, groups, splits, origin, camera, thr_px, irls);
-    let groups = &groups[..];
+    let detections = nfa::detect(points, groups, origin, camera, thr_px, irls);
     let residuals: Vec<&Vec<f64>> = detections.iter().map(|d| &d.residuals).collect();
     let mut assigned = by_nearest_f(&residuals, points.len(), thr_px);
     let mut held = vec![false; points.len()];

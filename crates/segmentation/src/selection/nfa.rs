@@ -13,6 +13,7 @@ pub use super::background::{Background, ImageRect};
 use super::binomial::ln_binomial_tail;
 use super::block::{block_count, inside, smallest_block};
 use super::coherence::ln_incoherence;
+use super::exclusion::{kept_apart, Chosen, Scene};
 use super::semicalibrated::{semicalibrated_fit, SEMICALIBRATED_FITTED};
 use super::uniqueness::Keypoints;
 use super::{refit, sampson_residuals};
@@ -130,7 +131,8 @@ pub struct Detection {
     pub f: Matrix3<f64>,
     /// Its score given the detections before it.
     pub significance: Significance,
-    /// The Sampson distances (px) of every match to `f`.
+    /// The Sampson distances (px) of every match to `f`; +∞ for the
+    /// matches of the groups kept apart from it ([`super::exclusion`]).
     pub residuals: Vec<f64>,
 }
 
@@ -166,7 +168,12 @@ pub struct Detection {
 /// clustered for would reach into a neighbouring object's matches
 /// (results/notes/selection.md). So a fragment of a detected motion
 /// keeps no more than the few matches of its noise tail, and a mover
-/// beyond `thr_px` of the background's F keeps the matches there.
+/// beyond `thr_px` of the background's F keeps the matches there. Where
+/// every match was clustered, a group not yet detected most of whose
+/// matches the detected model explains is kept apart from it when the
+/// pair is more meaningful than the union ([`super::exclusion`]): the
+/// detection is scored, polished and explains without that group's
+/// matches, which are left to its own test.
 ///
 /// The number of tests is `G · (N − 7) · 2 · 2`, times the candidates for
 /// the semi-calibrated model and the [`block_count`] blocks for a test
@@ -181,48 +188,17 @@ pub fn detect(
     thr_px: f64,
     irls: &IrlsParams,
 ) -> Vec<Detection> {
-    detect_split(points, groups, &[], origin, camera, thr_px, irls).0
-}
-
-/// Two parts of a group: the two clusters whose merge made it (prototype).
-pub type Split = Option<Box<SplitNode>>;
-
-/// A merge of the clustering: its two sides and their own last merges.
-#[derive(Debug, Clone)]
-pub struct SplitNode {
-    /// The two sides' matches.
-    pub parts: [Vec<usize>; 2],
-    /// Each side's own split.
-    pub below: [Split; 2],
-}
-
-/// Prototype (`SCTL_PROTO_SPLIT`): [`detect`], a group about to be
-/// detected replaced by its two parts (`splits`) when the parts' NFAs,
-/// the second given the first, multiply to less than the group's.
-/// Returns the detections and the groups, the parts appended.
-pub fn detect_split(
-    points: &Correspondences,
-    groups: &[Vec<usize>],
-    splits: &[Split],
-    origin: GroupOrigin,
-    camera: &Camera,
-    thr_px: f64,
-    irls: &IrlsParams,
-) -> (Vec<Detection>, Vec<Vec<usize>>) {
-    let mut groups = groups.to_vec();
-    let mut splits = splits.to_vec();
-    splits.resize(groups.len(), None);
     let n = points.len();
     let mut remaining: Vec<usize> = (0..groups.len())
         .filter(|&i| groups[i].len() > FITTED_MATCHES)
         .collect();
     if remaining.is_empty() || n <= FITTED_MATCHES {
-        return (Vec::new(), groups);
+        return Vec::new();
     }
     let ln_groups = (remaining.len() as f64).ln();
     let ln_tests = ln_groups + ((n - FITTED_MATCHES) as f64).ln();
     let keypoints = Keypoints::new(points);
-    let mut explained = Explained(vec![false; n]);
+    let mut explained = Explained::none(n);
     let mut fits: Vec<Option<Cached>> = groups.iter().map(|_| None).collect();
     let mut detections = Vec::new();
     loop {
@@ -250,93 +226,46 @@ pub fn detect_split(
             break;
         }
         remaining.swap_remove(pos);
-        if let Some(node) = splits[group].clone() {
-            let SplitNode { parts, below } = *node;
-            if split_wins(
-                points,
-                &parts,
-                &explained,
-                irls,
-                camera,
-                thr_px,
-                ln_tests,
-                &keypoints,
-                significance.ln_nfa,
-            ) {
-                fits[group] = None;
-                let recursive = std::env::var("SCTL_PROTO_SPLIT").as_deref() == Ok("2");
-                for (part, below) in parts.into_iter().zip(below) {
-                    remaining.push(groups.len());
-                    groups.push(part);
-                    splits.push(if recursive { below } else { None });
-                    fits.push(None);
-                }
-                continue;
-            }
-        }
-        let gfit = fits[group]
+        let fit = fits[group]
             .take()
             .and_then(|c| c.fit)
             .expect("a scored group has its fit");
-        let excl = std::env::var("SCTL_PROTO_EXCL").is_ok();
-        let excl_clustered = std::env::var("SCTL_PROTO_EXCL").as_deref() == Ok("clustered");
-        let rivals = if excl && (!excl_clustered || origin == GroupOrigin::Clustered) {
-            let ctx = Ctx {
-                points,
-                groups: &groups,
-                irls,
-                camera,
-                thr_px,
-                ln_tests,
-                keypoints: &keypoints,
-            };
-            excluded_rivals(
-                &ctx,
-                &remaining,
-                group,
-                &gfit,
-                model,
-                &explained,
-                significance.ln_nfa,
-            )
-        } else {
-            Vec::new()
+        let scene = Scene {
+            points,
+            groups,
+            camera,
+            thr_px,
+            irls,
+            ln_tests,
+            keypoints: &keypoints,
         };
-        let mut barred = explained.clone();
-        for &h in &rivals {
-            for &m in &groups[h] {
-                barred.0[m] = true;
+        let apart = match origin {
+            GroupOrigin::Clustered => {
+                let chosen = Chosen {
+                    group,
+                    fit: &fit,
+                    model,
+                    ln_nfa: significance.ln_nfa,
+                };
+                kept_apart(&scene, &remaining, &chosen, &explained)
             }
-        }
-        let (significance, model) = if rivals.is_empty() {
-            (significance, model)
-        } else {
-            gfit.significance(&barred, ln_tests, thr_px)
+            GroupOrigin::Extended => Vec::new(),
         };
-        let fit = gfit.models.into_iter().nth(model).expect("a model");
-        if !is_coherent(points, &groups[group], &explained, &fit.f, ln_groups) {
+        let barred = explained.barring(apart.iter().flat_map(|&h| &groups[h]));
+        let (significance, model) = match apart.is_empty() {
+            true => (significance, model),
+            false => fit.significance(&barred, ln_tests, thr_px),
+        };
+        let model = fit.models.into_iter().nth(model).expect("a scored model");
+        if !is_coherent(points, &groups[group], &explained, &model.f, ln_groups) {
             continue;
         }
-        let proto = std::env::var("SCTL_PROTO_POLISH").unwrap_or_default();
-        let (f, mut residuals) = match (fit.kind, origin, proto.as_str()) {
-            (ModelKind::Semicalibrated, GroupOrigin::Clustered, _) => (fit.f, fit.residuals),
-            (_, GroupOrigin::Clustered, "none") => (fit.f, fit.residuals),
-            (_, _, "own") => {
-                // Other undetected groups' matches are not support.
-                let mut barred = explained.clone();
-                for &g in &remaining {
-                    for &m in &groups[g] {
-                        barred.0[m] = true;
-                    }
-                }
-                polish_on_support(points, fit.f, fit.residuals, &barred, thr_px, irls)
-            }
-            _ => polish_on_support(points, fit.f, fit.residuals, &barred, thr_px, irls),
+        let (f, mut residuals) = match (model.kind, origin) {
+            (ModelKind::Semicalibrated, GroupOrigin::Clustered) => (model.f, model.residuals),
+            _ => polish_on_support(points, model.f, model.residuals, &barred, thr_px, irls),
         };
-        for &h in &rivals {
-            for &m in &groups[h] {
-                residuals[m] = f64::INFINITY;
-            }
+        for &m in apart.iter().flat_map(|&h| &groups[h]) {
+            residuals[m] = f64::INFINITY;
         }
         explained.add(&residuals, thr_px, &keypoints);
         detections.push(Detection {
@@ -346,126 +275,7 @@ pub fn detect_split(
             residuals,
         });
     }
-    (detections, groups)
-}
-
-/// What the exclusion test needs (prototype).
-struct Ctx<'a> {
-    points: &'a Correspondences,
-    groups: &'a [Vec<usize>],
-    irls: &'a IrlsParams,
-    camera: &'a Camera,
-    thr_px: f64,
-    ln_tests: f64,
-    keypoints: &'a Keypoints,
-}
-
-/// Prototype (`SCTL_PROTO_EXCL`): the remaining groups whose matches the
-/// detected group's model explains (most of those that count) but that
-/// are more meaningful apart: `NFA(group without h) · NFA(h | group) <
-/// NFA(group)` (the merging criterion of Cao, Delon, Desolneux, Musé &
-/// Sur 2007, a pair against its union).
-fn excluded_rivals(
-    ctx: &Ctx,
-    remaining: &[usize],
-    group: usize,
-    gfit: &GroupFit,
-    model: usize,
-    explained: &Explained,
-    ln_union: f64,
-) -> Vec<usize> {
-    let r = &gfit.models[model].residuals;
-    let mut out = Vec::new();
-    for &h in remaining {
-        if h == group {
-            continue;
-        }
-        let own: Vec<usize> = explained.counting(&ctx.groups[h]).collect();
-        let within = own.iter().filter(|&&m| r[m] <= ctx.thr_px).count();
-        if own.len() <= FITTED_MATCHES || 2 * within <= own.len() {
-            continue;
-        }
-        let mut barred = explained.clone();
-        for &m in &ctx.groups[h] {
-            barred.0[m] = true;
-        }
-        let (s_g, m_g) = gfit.significance(&barred, ctx.ln_tests, ctx.thr_px);
-        if !s_g.is_significant() {
-            continue;
-        }
-        let mut given = explained.clone();
-        let mut rg = gfit.models[m_g].residuals.clone();
-        for &m in &ctx.groups[h] {
-            rg[m] = f64::INFINITY;
-        }
-        given.add(&rg, ctx.thr_px, ctx.keypoints);
-        let mut cache = None;
-        let Some(hfit) = fit_given(
-            ctx.points,
-            &ctx.groups[h],
-            &given,
-            ctx.irls,
-            ctx.camera,
-            ctx.thr_px,
-            &mut cache,
-        ) else {
-            continue;
-        };
-        let (s_h, _) = hfit.significance(&given, ctx.ln_tests, ctx.thr_px);
-        if std::env::var("SCTL_DBG").is_ok() {
-            eprintln!("rival {h} of {group}: g {:.1} (eps {:.2} k {}) h {:.1} (eps {:.2} k {}) union {:.1}", s_g.ln_nfa, s_g.threshold_px, s_g.support, s_h.ln_nfa, s_h.threshold_px, s_h.support, ln_union);
-        }
-        let once = std::env::var("SCTL_PROTO_EXCL_PAIR").as_deref() == Ok("once");
-        let pair = if once {
-            s_g.ln_nfa + s_h.ln_nfa - ctx.ln_tests + (remaining.len() as f64).ln()
-        } else {
-            s_g.ln_nfa + s_h.ln_nfa
-        };
-        if s_h.is_significant() && pair < ln_union {
-            out.push(h);
-        }
-    }
-    out
-}
-
-/// Whether two parts of a group are more meaningful than the group: both
-/// significant, the second given the first's model, and the product of
-/// their NFAs below the group's (`ln_group`).
-#[allow(clippy::too_many_arguments)]
-fn split_wins(
-    points: &Correspondences,
-    parts: &[Vec<usize>; 2],
-    explained: &Explained,
-    irls: &IrlsParams,
-    camera: &Camera,
-    thr_px: f64,
-    ln_tests: f64,
-    keypoints: &Keypoints,
-    ln_group: f64,
-) -> bool {
-    let score = |part: &[usize], explained: &Explained| {
-        let mut cache = None;
-        let fit = fit_given(points, part, explained, irls, camera, thr_px, &mut cache)?;
-        let (s, model) = fit.significance(explained, ln_tests, thr_px);
-        Some((s, fit.models[model].residuals.clone()))
-    };
-    let (Some(a), Some(b)) = (score(&parts[0], explained), score(&parts[1], explained)) else {
-        return false;
-    };
-    let (first, second) = if a.0.ln_nfa <= b.0.ln_nfa {
-        (a, &parts[1])
-    } else {
-        (b, &parts[0])
-    };
-    if !first.0.is_significant() {
-        return false;
-    }
-    let mut given = explained.clone();
-    given.add(&first.1, thr_px, keypoints);
-    let Some((s2, _)) = score(second, &given) else {
-        return false;
-    };
-    s2.is_significant() && first.0.ln_nfa + s2.ln_nfa < ln_group
+    detections
 }
 
 /// Whether the matches of `group` that count map image-1 neighbours to
@@ -523,19 +333,33 @@ fn polish_on_support(
 /// The matches the detections so far explain: within `thr_px` of a
 /// detected F, or sharing a keypoint with a match a detection explained
 /// when that detection's F leaves it beyond `thr_px` ([`super::uniqueness`]).
-#[derive(Clone)]
+#[derive(Debug, Clone)]
 pub struct Explained(Vec<bool>);
 
 impl Explained {
+    /// Nothing explained among `n` matches.
+    pub(super) fn none(n: usize) -> Self {
+        Self(vec![false; n])
+    }
+
+    /// These, and `matches` too.
+    pub(super) fn barring<'a>(&self, matches: impl IntoIterator<Item = &'a usize>) -> Self {
+        let mut barred = self.clone();
+        for &m in matches {
+            barred.0[m] = true;
+        }
+        barred
+    }
+
     /// The matches of `group` that count: those no detection explains.
-    fn counting<'a>(&'a self, group: &'a [usize]) -> impl Iterator<Item = usize> + 'a {
+    pub(super) fn counting<'a>(&'a self, group: &'a [usize]) -> impl Iterator<Item = usize> + 'a {
         group.iter().copied().filter(|&m| !self.0[m])
     }
 
     /// The matches a detected F of Sampson distances `residuals` explains,
     /// and those that share a keypoint with one it newly explains and
     /// that it does not explain (a keypoint has one correspondence).
-    fn add(&mut self, residuals: &[f64], thr_px: f64, keypoints: &Keypoints) {
+    pub(super) fn add(&mut self, residuals: &[f64], thr_px: f64, keypoints: &Keypoints) {
         let newly: Vec<usize> = (0..residuals.len())
             .filter(|&m| residuals[m] <= thr_px && !self.0[m])
             .collect();
@@ -556,8 +380,8 @@ impl Explained {
 /// change only when one of those matches becomes explained, so a round
 /// reuses the last round's fit of a group none of whose matches the last
 /// detection explained.
-struct GroupFit {
-    models: Vec<Model>,
+pub(super) struct GroupFit {
+    pub(super) models: Vec<Model>,
     /// Per match: whether it lies in the group's block (None: no block
     /// holds the group).
     block: Option<Vec<bool>>,
@@ -596,11 +420,11 @@ impl ModelKind {
 }
 
 /// One model of a group, with what its NFA needs.
-struct Model {
+pub(super) struct Model {
     kind: ModelKind,
     f: Matrix3<f64>,
     /// Sampson distances (px) of every match to `f`.
-    residuals: Vec<f64>,
+    pub(super) residuals: Vec<f64>,
     background: Background,
     /// Its background over the group's block, when one holds the group.
     block_background: Option<Background>,
@@ -661,7 +485,7 @@ impl GroupFit {
     /// The smallest significance of its models over the image and its
     /// block, each NFA counting the models and the scopes as tests (a union
     /// bound), and which model it is.
-    fn significance(
+    pub(super) fn significance(
         &self,
         explained: &Explained,
         ln_tests: f64,
@@ -686,7 +510,7 @@ impl GroupFit {
 /// A group's last refit: how many of its matches counted, and the fit
 /// (None when the refit failed, which is then not tried again until that
 /// number changes).
-struct Cached {
+pub(super) struct Cached {
     own: usize,
     fit: Option<GroupFit>,
 }
@@ -694,7 +518,7 @@ struct Cached {
 /// The fit of `group` given `explained`, from `cache` when none of its
 /// matches became explained since; None when fewer than 8 of its matches
 /// count or the fit fails.
-fn fit_given<'a>(
+pub(super) fn fit_given<'a>(
     points: &Correspondences,
     group: &[usize],
     explained: &Explained,
