@@ -27,7 +27,7 @@ use geometry::{Correspondences, IrlsParams};
 
 /// What the detection tests a group against: the matches, the groups and
 /// the constants of `nfa::detect`.
-pub(super) struct Scene<'a> {
+pub(super) struct Context<'a> {
     pub points: &'a Correspondences,
     pub groups: &'a [Vec<usize>],
     pub camera: &'a Camera,
@@ -52,7 +52,7 @@ pub(super) struct Chosen<'a> {
 /// more than half, and for which the pair is more meaningful than the
 /// union (both NFAs below 1 and their product below the chosen group's).
 pub(super) fn kept_apart(
-    scene: &Scene,
+    ctx: &Context,
     remaining: &[usize],
     chosen: &Chosen,
     explained: &Explained,
@@ -60,20 +60,17 @@ pub(super) fn kept_apart(
     remaining
         .iter()
         .copied()
-        .filter(|&h| h != chosen.group && mostly_explained(scene, h, chosen, explained))
-        .filter(|&h| pair_wins(scene, h, chosen, explained))
+        .filter(|&h| h != chosen.group && mostly_explained(ctx, h, chosen, explained))
+        .filter(|&h| pair_wins(ctx, h, chosen, explained))
         .collect()
 }
 
 /// Whether the chosen model explains more than half of the matches of
 /// group `h` that count, and at least 8 of them count.
-fn mostly_explained(scene: &Scene, h: usize, chosen: &Chosen, explained: &Explained) -> bool {
+fn mostly_explained(ctx: &Context, h: usize, chosen: &Chosen, explained: &Explained) -> bool {
     let residuals = &chosen.fit.models[chosen.model].residuals;
-    let own: Vec<usize> = explained.counting(&scene.groups[h]).collect();
-    let within = own
-        .iter()
-        .filter(|&&m| residuals[m] <= scene.thr_px)
-        .count();
+    let own: Vec<usize> = explained.counting(&ctx.groups[h]).collect();
+    let within = own.iter().filter(|&&m| residuals[m] <= ctx.thr_px).count();
     own.len() > FITTED_MATCHES && 2 * within > own.len()
 }
 
@@ -81,12 +78,10 @@ fn mostly_explained(scene: &Scene, h: usize, chosen: &Chosen, explained: &Explai
 /// NFA(chosen)`, both terms below 0: the chosen group scored with h's
 /// matches barred (its best model and scope again), then h fitted and
 /// scored given what that model explains outside h.
-fn pair_wins(scene: &Scene, h: usize, chosen: &Chosen, explained: &Explained) -> bool {
-    let group_h = &scene.groups[h];
+fn pair_wins(ctx: &Context, h: usize, chosen: &Chosen, explained: &Explained) -> bool {
+    let group_h = &ctx.groups[h];
     let barred = explained.barring(group_h);
-    let (alone, model) = chosen
-        .fit
-        .significance(&barred, scene.ln_tests, scene.thr_px);
+    let (alone, model) = chosen.fit.significance(&barred, ctx.ln_tests, ctx.thr_px);
     if !alone.is_significant() {
         return false;
     }
@@ -95,20 +90,14 @@ fn pair_wins(scene: &Scene, h: usize, chosen: &Chosen, explained: &Explained) ->
         residuals[m] = f64::INFINITY;
     }
     let mut given = explained.clone();
-    given.add(&residuals, scene.thr_px, scene.keypoints);
+    given.add(&residuals, ctx.thr_px, ctx.keypoints);
     let mut cache = None;
     let Some(fit) = fit_given(
-        scene.points,
-        group_h,
-        &given,
-        scene.irls,
-        scene.camera,
-        scene.thr_px,
-        &mut cache,
+        ctx.points, group_h, &given, ctx.irls, ctx.camera, ctx.thr_px, &mut cache,
     ) else {
         return false;
     };
-    let (other, _) = fit.significance(&given, scene.ln_tests, scene.thr_px);
+    let (other, _) = fit.significance(&given, ctx.ln_tests, ctx.thr_px);
     other.is_significant() && alone.ln_nfa + other.ln_nfa < chosen.ln_nfa
 }
 

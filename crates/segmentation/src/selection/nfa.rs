@@ -13,7 +13,7 @@ pub use super::background::{Background, ImageRect};
 use super::binomial::ln_binomial_tail;
 use super::block::{block_count, inside, smallest_block};
 use super::coherence::ln_incoherence;
-use super::exclusion::{kept_apart, Chosen, Scene};
+use super::exclusion::{kept_apart, Chosen, Context};
 use super::semicalibrated::{semicalibrated_fit, SEMICALIBRATED_FITTED};
 use super::uniqueness::Keypoints;
 use super::{refit, sampson_residuals};
@@ -230,7 +230,7 @@ pub fn detect(
             .take()
             .and_then(|c| c.fit)
             .expect("a scored group has its fit");
-        let scene = Scene {
+        let ctx = Context {
             points,
             groups,
             camera,
@@ -247,7 +247,7 @@ pub fn detect(
                     model,
                     ln_nfa: significance.ln_nfa,
                 };
-                kept_apart(&scene, &remaining, &chosen, &explained)
+                kept_apart(&ctx, &remaining, &chosen, &explained)
             }
             GroupOrigin::Extended => Vec::new(),
         };
