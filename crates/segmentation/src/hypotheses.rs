@@ -145,7 +145,7 @@ pub fn generate_hypotheses_cancellable(
 
         let t = Instant::now();
         cancel.check()?;
-        let refined = refine_fits(&points, &fits, params, cancel, matches.focal_prior);
+        let refined = refine_fits(&points, &fits, params, cancel);
         cancel.check()?;
         refine_seconds += t.elapsed().as_secs_f64();
         fitted.extend(fits.iter().map(Option::is_some));
@@ -248,35 +248,13 @@ fn solve_minimal_samples(
         .collect()
 }
 
-/// Prototype: the F of the essential matrix nearest (Frobenius) to
-/// `K F K` at `focal` (Hartley & Zisserman 9.6.1), `K = diag(f, f, 1)`.
-fn nearest_semicalibrated(f: &Matrix3<f64>, focal: f64) -> Matrix3<f64> {
-    let k = Matrix3::new(focal, 0.0, 0.0, 0.0, focal, 0.0, 0.0, 0.0, 1.0);
-    let e = k * f * k;
-    let svd = e.svd(true, true);
-    let (Some(u), Some(v_t)) = (svd.u, svd.v_t) else {
-        return *f;
-    };
-    let sv = svd.singular_values;
-    let smallest = (0..3).min_by(|&a, &b| sv[a].total_cmp(&sv[b])).unwrap_or(2);
-    let s = 0.5 * (sv.sum() - sv[smallest]);
-    let mut d = nalgebra::Vector3::new(s, s, s);
-    d[smallest] = 0.0;
-    let e = u * Matrix3::from_diagonal(&d) * v_t;
-    let k_inv = Matrix3::new(1.0 / focal, 0.0, 0.0, 0.0, 1.0 / focal, 0.0, 0.0, 0.0, 1.0);
-    k_inv * e * k_inv
-}
-
 /// Step 3: IRLS-Tukey from each fit (or the raw fit when `refine` is off).
 fn refine_fits(
     points: &Correspondences,
     fits: &[Option<SampleFit>],
     params: &Params,
     cancel: &Cancel,
-    focal_prior: f64,
 ) -> Vec<Option<Matrix3<f64>>> {
-    let project = std::env::var("SCTL_PROTO_ESSPROJ").is_ok()
-        && params.sampling.minimal_solver == MinimalSolver::FivePoint;
     if !params.refinement.refine {
         return fits.iter().map(|fit| fit.as_ref().map(|s| s.f)).collect();
     }
@@ -285,9 +263,6 @@ fn refine_fits(
         .map_init(IrlsWorkspace::new, |ws, fit| {
             let fit = fit.as_ref().filter(|_| !cancel.is_cancelled())?;
             let refined = ws.run(points, &fit.start, Some(&fit.f), &irls).ok()?;
-            if project {
-                return Some(nearest_semicalibrated(&refined.f, focal_prior));
-            }
             Some(refined.f)
         })
         .collect()
