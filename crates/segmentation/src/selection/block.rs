@@ -53,8 +53,8 @@ pub fn smallest_block(
         });
         let min = [0, 1].map(|i| image.min[i] + first[i] * cell[i]);
         let max = [0, 1].map(|i| min[i] + 2.0 * cell[i]);
-        let holds = (0..2).all(|i| lo[i] >= min[i] && hi[i] <= max[i]);
-        holds.then_some(ImageRect { min, max })
+        let block = ImageRect { min, max };
+        (block.contains(lo) && block.contains(hi)).then_some(block)
     })
 }
 

@@ -85,10 +85,7 @@ fn pair_wins(ctx: &Context, h: usize, chosen: &Chosen, explained: &Explained) ->
     if !alone.is_significant() {
         return false;
     }
-    let mut residuals = chosen.fit.models[model].residuals.clone();
-    for &m in group_h {
-        residuals[m] = f64::INFINITY;
-    }
+    let residuals = leaving_out(chosen.fit.models[model].residuals.clone(), group_h);
     let mut given = explained.clone();
     given.add(&residuals, ctx.thr_px, ctx.keypoints);
     let mut cache = None;
@@ -99,6 +96,18 @@ fn pair_wins(ctx: &Context, h: usize, chosen: &Chosen, explained: &Explained) ->
     };
     let (other, _) = fit.significance(&given, ctx.ln_tests, ctx.thr_px);
     other.is_significant() && alone.ln_nfa + other.ln_nfa < chosen.ln_nfa
+}
+
+/// `residuals` with `matches` at +∞: a detection's distances that leave
+/// the matches of the groups kept apart from it to their own tests.
+pub(super) fn leaving_out<'a>(
+    mut residuals: Vec<f64>,
+    matches: impl IntoIterator<Item = &'a usize>,
+) -> Vec<f64> {
+    for &m in matches {
+        residuals[m] = f64::INFINITY;
+    }
+    residuals
 }
 
 #[cfg(test)]

@@ -13,7 +13,7 @@ pub use super::background::{Background, ImageRect};
 use super::binomial::ln_binomial_tail;
 use super::block::{block_count, inside, smallest_block};
 use super::coherence::ln_incoherence;
-use super::exclusion::{kept_apart, Chosen, Context};
+use super::exclusion::{kept_apart, leaving_out, Chosen, Context};
 use super::semicalibrated::{semicalibrated_fit, SEMICALIBRATED_FITTED};
 use super::uniqueness::Keypoints;
 use super::{refit, sampson_residuals};
@@ -201,6 +201,15 @@ pub fn detect(
     let mut explained = Explained::none(n);
     let mut fits: Vec<Option<Cached>> = groups.iter().map(|_| None).collect();
     let mut detections = Vec::new();
+    let ctx = Context {
+        points,
+        groups,
+        camera,
+        thr_px,
+        irls,
+        ln_tests,
+        keypoints: &keypoints,
+    };
     loop {
         let best = remaining
             .iter()
@@ -230,15 +239,6 @@ pub fn detect(
             .take()
             .and_then(|c| c.fit)
             .expect("a scored group has its fit");
-        let ctx = Context {
-            points,
-            groups,
-            camera,
-            thr_px,
-            irls,
-            ln_tests,
-            keypoints: &keypoints,
-        };
         let apart = match origin {
             GroupOrigin::Clustered => {
                 let chosen = Chosen {
@@ -251,22 +251,23 @@ pub fn detect(
             }
             GroupOrigin::Extended => Vec::new(),
         };
-        let barred = explained.barring(apart.iter().flat_map(|&h| &groups[h]));
-        let (significance, model) = match apart.is_empty() {
-            true => (significance, model),
-            false => fit.significance(&barred, ln_tests, thr_px),
+        let apart_matches = || apart.iter().flat_map(|&h| &groups[h]);
+        // What the detection may explain: all but the kept-apart matches.
+        let barred = (!apart.is_empty()).then(|| explained.barring(apart_matches()));
+        let (significance, model) = match &barred {
+            Some(barred) => fit.significance(barred, ln_tests, thr_px),
+            None => (significance, model),
         };
+        let support = barred.as_ref().unwrap_or(&explained);
         let model = fit.models.into_iter().nth(model).expect("a scored model");
         if !is_coherent(points, &groups[group], &explained, &model.f, ln_groups) {
             continue;
         }
-        let (f, mut residuals) = match (model.kind, origin) {
+        let (f, residuals) = match (model.kind, origin) {
             (ModelKind::Semicalibrated, GroupOrigin::Clustered) => (model.f, model.residuals),
-            _ => polish_on_support(points, model.f, model.residuals, &barred, thr_px, irls),
+            _ => polish_on_support(points, model.f, model.residuals, support, thr_px, irls),
         };
-        for &m in apart.iter().flat_map(|&h| &groups[h]) {
-            residuals[m] = f64::INFINITY;
-        }
+        let residuals = leaving_out(residuals, apart_matches());
         explained.add(&residuals, thr_px, &keypoints);
         detections.push(Detection {
             group,
@@ -576,7 +577,7 @@ mod tests {
             // Given the background's F, each of the object's models over
             // every match: NFA ≥ 1 (the tests of detect: 2 groups, N − 7
             // thresholds, 2 models, 2 scopes).
-            let mut explained = Explained(vec![false; points.len()]);
+            let mut explained = Explained::none(points.len());
             explained.add(&detections[0].residuals, THR_PX, &Keypoints::new(&points));
             let mut cache = None;
             let fit = fit_given(
