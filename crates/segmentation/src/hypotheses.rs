@@ -259,32 +259,10 @@ fn refine_fits(
         return fits.iter().map(|fit| fit.as_ref().map(|s| s.f)).collect();
     }
     let irls = params.irls();
-    let factor: Option<f64> = std::env::var("SCTL_PROTO_START")
-        .ok()
-        .and_then(|v| v.parse().ok());
-    let half = std::env::var("SCTL_PROTO_REFINE").is_ok_and(|v| v == "half");
     fits.par_iter()
-        .enumerate()
-        .map_init(IrlsWorkspace::new, |ws, (k, fit)| {
+        .map_init(IrlsWorkspace::new, |ws, fit| {
             let fit = fit.as_ref().filter(|_| !cancel.is_cancelled())?;
-            if half && k % 2 == 1 {
-                return Some(fit.f);
-            }
-            let tight: Option<Vec<usize>> = factor.and_then(|k| {
-                let r = k * params.refinement.thr_px;
-                let t: Vec<usize> = fit
-                    .start
-                    .iter()
-                    .copied()
-                    .filter(|&i| {
-                        let (a, b) = (points.point1(i), points.point2(i));
-                        geometry::sampson_distance(&fit.f, a, b) <= r
-                    })
-                    .collect();
-                (t.len() >= 12).then_some(t)
-            });
-            let start = tight.as_deref().unwrap_or(&fit.start);
-            let refined = ws.run(points, start, Some(&fit.f), &irls).ok()?;
+            let refined = ws.run(points, &fit.start, Some(&fit.f), &irls).ok()?;
             Some(refined.f)
         })
         .collect()

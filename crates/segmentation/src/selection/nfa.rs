@@ -55,11 +55,7 @@ impl Significance {
 
     /// `NFA < 1`: the model is meaningful.
     pub fn is_significant(&self) -> bool {
-        let eps: f64 = std::env::var("SCTL_PROTO_LNEPS")
-            .ok()
-            .and_then(|v| v.parse().ok())
-            .unwrap_or(0.0);
-        self.ln_nfa < eps
+        self.ln_nfa < 0.0
     }
 }
 
