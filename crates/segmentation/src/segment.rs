@@ -357,15 +357,11 @@ fn build_preferences(
         entering.push(*model);
     }
     let models = SampsonModels::new(&entering);
-    let k: f64 = std::env::var("SCTL_PROTO_PTAU")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(1.0);
     let preferences = Preferences::from_residual_rows(
         params.clustering.linkage,
         points.len(),
         models.len(),
-        tau * k * k,
+        tau,
         |i, out| {
             // Once cancelled, the rows left are not computed (every
             // residual above τ) and the caller returns Interrupted.
