@@ -7,7 +7,10 @@
 //!
 //! - own cluster: a cluster whose majority it is holds more than half of
 //!   it, and the selection did not keep it;
-//! - merged: the cluster holding most of it is another motion's;
+//! - merged: the cluster holding most of it is another motion's; counted
+//!   apart when more than half of its matches lie within `thr_px` of that
+//!   motion's F (the normalised 8-point of its true matches), where no
+//!   labelling by that F can tell the two apart;
 //! - no cluster: more than half of its matches are in no cluster;
 //! - other: the rest (split over clusters, or in a cluster of outliers).
 //!
@@ -22,6 +25,7 @@
 use clap::Parser;
 use datasets::synthetic::Preset;
 use datasets::Scene;
+use geometry::{eight_point_normalized, sampson_distance, Correspondences};
 use sctl::pipeline::{matches, scene_seed};
 use segmentation::selection::{select_groups, Camera, GroupOrigin, ImageRect};
 use segmentation::{centred_points, segment, FinalAssignment, Params};
@@ -57,6 +61,7 @@ struct Counts {
     found: usize,
     own_cluster: usize,
     merged: usize,
+    merged_within: usize,
     no_cluster: usize,
     other: usize,
 }
@@ -73,6 +78,30 @@ fn holder(labels: &[i32], idx: &[usize]) -> Option<(i32, usize)> {
         .max_by_key(|&(l, n)| (n, std::cmp::Reverse(l)))
 }
 
+/// One scene run: which true motions are significant alone, the
+/// default's labels and its clustering's.
+struct Run<'a> {
+    significant: &'a [bool],
+    found: &'a [i32],
+    clustered: &'a [i32],
+}
+
+/// How many of the matches `idx` of `scene` lie within `thr_px` (Sampson,
+/// pixels) of the normalised 8-point F of true motion `other`'s matches.
+fn within_other_f(scene: &Scene, idx: &[usize], other: i32, thr_px: f64) -> usize {
+    let truth = scene.labels.as_deref().unwrap_or_default();
+    let of: Vec<usize> = (0..truth.len()).filter(|&i| truth[i] == other).collect();
+    let pick = |p: &[[f64; 2]], at: &[usize]| at.iter().map(|&i| p[i]).collect::<Vec<_>>();
+    let fitted = Correspondences::new(&pick(&scene.points1, &of), &pick(&scene.points2, &of))
+        .and_then(|c| eight_point_normalized(&c));
+    let Ok(f) = fitted else {
+        return 0;
+    };
+    idx.iter()
+        .filter(|&&i| sampson_distance(&f, scene.points1[i], scene.points2[i]) <= thr_px)
+        .count()
+}
+
 /// The majority true label of the matches labelled `label`.
 fn majority(labels: &[i32], truth: &[i32], label: i32) -> i32 {
     let mut count: HashMap<i32, usize> = HashMap::new();
@@ -87,7 +116,12 @@ fn majority(labels: &[i32], truth: &[i32], label: i32) -> i32 {
 
 impl Counts {
     /// One scene run: the default's labels and its clustering's.
-    fn add(&mut self, scene: &Scene, significant: &[bool], found: &[i32], clustered: &[i32]) {
+    fn add(&mut self, scene: &Scene, runs: &Run, thr_px: f64) {
+        let Run {
+            significant,
+            found,
+            clustered,
+        } = *runs;
         let truth = scene.labels.as_deref().unwrap_or_default();
         for (t, &sig) in (1..).zip(significant) {
             let idx: Vec<usize> = (0..truth.len()).filter(|&i| truth[i] == t).collect();
@@ -108,7 +142,11 @@ impl Counts {
             match holder(clustered, &idx) {
                 _ if held(clustered).is_some() => self.own_cluster += 1,
                 Some((l, _)) if ![0, t].contains(&majority(clustered, truth, l)) => {
-                    self.merged += 1
+                    self.merged += 1;
+                    let other = majority(clustered, truth, l);
+                    if 2 * within_other_f(scene, &idx, other, thr_px) > idx.len() {
+                        self.merged_within += 1;
+                    }
                 }
                 _ if 2 * unclustered > idx.len() => self.no_cluster += 1,
                 _ => self.other += 1,
@@ -122,10 +160,11 @@ impl Counts {
             self.motions, self.significant, self.found
         );
         println!(
-            "significant and missed {}: own cluster not kept {}, merged into another motion's cluster {}, in no cluster {}, other {}",
+            "significant and missed {}: own cluster not kept {}, merged into another motion's cluster {} ({} with more than half of its matches within thr_px of that motion's F), in no cluster {}, other {}",
             self.own_cluster + self.merged + self.no_cluster + self.other,
             self.own_cluster,
             self.merged,
+            self.merged_within,
             self.no_cluster,
             self.other
         );
@@ -169,7 +208,12 @@ fn run(o: &Options) -> Result<Counts, String> {
                     .map(|s| s.labels)
                     .map_err(|e| format!("{}: {e}", scene.name))
             };
-            counts.add(scene, &significant, &label(&p)?, &label(&clustering)?);
+            let run = Run {
+                significant: &significant,
+                found: &label(&p)?,
+                clustered: &label(&clustering)?,
+            };
+            counts.add(scene, &run, p.refinement.thr_px);
         }
     }
     Ok(counts)
