@@ -36,6 +36,7 @@
 //! assert_eq!(clustering.labels, vec![0, 0, 1, 1]);
 //! ```
 
+pub mod dendrogram;
 pub mod distance;
 pub mod error;
 mod heap;

@@ -4,7 +4,8 @@
 use crate::assignment::members;
 use crate::memory_guard::{memory_limit, ASSUMED_PREFERENCE_DENSITY};
 use crate::merge::inlier_words;
-use crate::selection::{select_groups, Camera, GroupOrigin, ImageRect};
+use crate::selection::nfa::FITTED_MATCHES;
+use crate::selection::{select_clustered, select_groups, Camera, GroupOrigin, ImageRect};
 use crate::{
     available_memory, centred_points, check_available_memory, check_matches,
     estimate_hypothesis_focals, extend_labels, focal_filter, generate_hypotheses_cancellable,
@@ -13,6 +14,7 @@ use crate::{
     InlierBits, Matches, Method, Params, Segmentation, SegmentationError, StageTimings,
     SubsetExtension,
 };
+use clustering::dendrogram::last_sides;
 use clustering::{ClusteringParams, Preferences};
 use geometry::{eight_point_normalized, sampson_distances_squared, Correspondences, SampsonModels};
 use nalgebra::Matrix3;
@@ -272,7 +274,7 @@ fn cluster_kept(
             &step7.inliers,
         )),
         FinalAssignment::None | FinalAssignment::Nfa => {
-            (clustering.labels, clustering.clusters_after_filter)
+            (clustering.labels.clone(), clustering.clusters_after_filter)
         }
     };
     let (labels, all_points) = if subset_active {
@@ -303,7 +305,13 @@ fn cluster_kept(
         } else {
             GroupOrigin::Clustered
         };
-        let selected = select_groups(&all_points, &groups, origin, camera, thr)?;
+        let selected = match origin {
+            GroupOrigin::Clustered => {
+                let sides = last_sides(&clustering, FITTED_MATCHES + 1);
+                select_clustered(&all_points, &groups, &sides, camera, thr)?
+            }
+            GroupOrigin::Extended => select_groups(&all_points, &groups, origin, camera, thr)?,
+        };
         (selected.labels, selected.motions)
     } else {
         (labels, clusters)

@@ -30,6 +30,7 @@ mod default_tests;
 pub mod exclusion;
 pub mod nfa;
 pub mod semicalibrated;
+pub mod split;
 #[cfg(test)]
 mod tests;
 pub mod uniqueness;
@@ -253,6 +254,54 @@ pub fn select_groups(
     Ok(Selection::of(labels))
 }
 
+/// [`select_groups`] where every match was clustered
+/// ([`GroupOrigin::Clustered`]), each group first replaced by the two
+/// sides of its last merge (`sides[g]`, from
+/// [`clustering::dendrogram::last_sides`]) where they are two motions
+/// (the conditions of [`split`]).
+///
+/// Errors: those of [`select_groups`], a side's index out of range.
+pub fn select_clustered(
+    points: &Correspondences,
+    groups: &[Vec<usize>],
+    sides: &[Option<[Vec<usize>; 2]>],
+    camera: Camera,
+    thr_px: f64,
+) -> Result<Selection, SelectionError> {
+    let in_sides = sides.iter().flatten().flatten().flatten();
+    if let Some(&index) = groups
+        .iter()
+        .flatten()
+        .chain(in_sides)
+        .find(|&&m| m >= points.len())
+    {
+        return Err(SelectionError::BadIndex {
+            index,
+            points: points.len(),
+        });
+    }
+    check_scene(camera, thr_px)?;
+    let irls = refit_params(thr_px);
+    let scene = split::Scene {
+        points,
+        camera: &camera,
+        thr_px,
+        irls: &irls,
+    };
+    let (groups, fits) = split::split_groups(&scene, groups, sides);
+    let detections = nfa::detect_fitted(
+        points,
+        &groups,
+        fits,
+        GroupOrigin::Clustered,
+        &camera,
+        thr_px,
+        &irls,
+    );
+    let labels = label_detected(points, &groups, &detections, thr_px);
+    Ok(Selection::of(labels))
+}
+
 /// Labels after [`nfa::detect`]: the detected groups' matches keep their
 /// group; another group joins, as a whole, the detected F that explains
 /// (within `thr_px`, the band that explains a match in the detection) the
@@ -271,6 +320,16 @@ fn by_nfa(
     irls: &IrlsParams,
 ) -> Vec<i32> {
     let detections = nfa::detect(points, groups, origin, camera, thr_px, irls);
+    label_detected(points, groups, &detections, thr_px)
+}
+
+/// [`by_nfa`]'s labels given its detections.
+fn label_detected(
+    points: &Correspondences,
+    groups: &[Vec<usize>],
+    detections: &[nfa::Detection],
+    thr_px: f64,
+) -> Vec<i32> {
     let residuals: Vec<&Vec<f64>> = detections.iter().map(|d| &d.residuals).collect();
     let mut assigned = by_nearest_f(&residuals, points.len(), thr_px);
     let mut held = vec![false; points.len()];

@@ -188,6 +188,21 @@ pub fn detect(
     thr_px: f64,
     irls: &IrlsParams,
 ) -> Vec<Detection> {
+    let fits = groups.iter().map(|_| None).collect();
+    detect_fitted(points, groups, fits, origin, camera, thr_px, irls)
+}
+
+/// [`detect`] with some groups' fits given nothing explained already made
+/// (`fits[g]`, by [`fit_given`] with [`Explained::none`]; None: not made).
+pub(super) fn detect_fitted(
+    points: &Correspondences,
+    groups: &[Vec<usize>],
+    mut fits: Vec<Option<Cached>>,
+    origin: GroupOrigin,
+    camera: &Camera,
+    thr_px: f64,
+    irls: &IrlsParams,
+) -> Vec<Detection> {
     let n = points.len();
     let mut remaining: Vec<usize> = (0..groups.len())
         .filter(|&i| groups[i].len() > FITTED_MATCHES)
@@ -199,7 +214,6 @@ pub fn detect(
     let ln_tests = ln_groups + ((n - FITTED_MATCHES) as f64).ln();
     let keypoints = Keypoints::new(points);
     let mut explained = Explained::none(n);
-    let mut fits: Vec<Option<Cached>> = groups.iter().map(|_| None).collect();
     let mut detections = Vec::new();
     let ctx = Context {
         points,
