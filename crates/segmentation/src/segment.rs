@@ -267,6 +267,10 @@ fn cluster_kept(
     cancel.check()?;
 
     let t = Instant::now();
+    // Where every match was clustered, the two sides of each cluster's
+    // last merge, which the selection may split it into.
+    let sides = (params.selection.final_assignment == FinalAssignment::Nfa && !subset_active)
+        .then(|| last_sides(&clustering, FITTED_MATCHES + 1));
     let (labels, clusters) = match params.selection.final_assignment {
         FinalAssignment::Merge => with_count(merge_explained(
             &clustering.labels,
@@ -274,7 +278,7 @@ fn cluster_kept(
             &step7.inliers,
         )),
         FinalAssignment::None | FinalAssignment::Nfa => {
-            (clustering.labels.clone(), clustering.clusters_after_filter)
+            (clustering.labels, clustering.clusters_after_filter)
         }
     };
     let (labels, all_points) = if subset_active {
@@ -300,17 +304,9 @@ fn cluster_kept(
             image: ImageRect::new(matches.image_size, matches.principal_point),
             focal_px: matches.focal_prior,
         };
-        let origin = if subset_active {
-            GroupOrigin::Extended
-        } else {
-            GroupOrigin::Clustered
-        };
-        let selected = match origin {
-            GroupOrigin::Clustered => {
-                let sides = last_sides(&clustering, FITTED_MATCHES + 1);
-                select_clustered(&all_points, &groups, &sides, camera, thr)?
-            }
-            GroupOrigin::Extended => select_groups(&all_points, &groups, origin, camera, thr)?,
+        let selected = match &sides {
+            Some(sides) => select_clustered(&all_points, &groups, sides, camera, thr)?,
+            None => select_groups(&all_points, &groups, GroupOrigin::Extended, camera, thr)?,
         };
         (selected.labels, selected.motions)
     } else {

@@ -242,12 +242,7 @@ pub fn select_groups(
     camera: Camera,
     thr_px: f64,
 ) -> Result<Selection, SelectionError> {
-    if let Some(&index) = groups.iter().flatten().find(|&&m| m >= points.len()) {
-        return Err(SelectionError::BadIndex {
-            index,
-            points: points.len(),
-        });
-    }
+    check_indices(points, groups.iter().flatten())?;
     check_scene(camera, thr_px)?;
     let irls = refit_params(thr_px);
     let labels = by_nfa(points, groups, origin, &camera, thr_px, &irls);
@@ -269,17 +264,7 @@ pub fn select_clustered(
     thr_px: f64,
 ) -> Result<Selection, SelectionError> {
     let in_sides = sides.iter().flatten().flatten().flatten();
-    if let Some(&index) = groups
-        .iter()
-        .flatten()
-        .chain(in_sides)
-        .find(|&&m| m >= points.len())
-    {
-        return Err(SelectionError::BadIndex {
-            index,
-            points: points.len(),
-        });
-    }
+    check_indices(points, groups.iter().flatten().chain(in_sides))?;
     check_scene(camera, thr_px)?;
     let irls = refit_params(thr_px);
     let scene = split::Scene {
@@ -321,6 +306,21 @@ fn by_nfa(
 ) -> Vec<i32> {
     let detections = nfa::detect(points, groups, origin, camera, thr_px, irls);
     label_detected(points, groups, &detections, thr_px)
+}
+
+/// Every index in `indices` names one of `points`
+/// ([`SelectionError::BadIndex`] for the first that does not).
+fn check_indices<'a>(
+    points: &Correspondences,
+    mut indices: impl Iterator<Item = &'a usize>,
+) -> Result<(), SelectionError> {
+    match indices.find(|&&m| m >= points.len()) {
+        Some(&index) => Err(SelectionError::BadIndex {
+            index,
+            points: points.len(),
+        }),
+        None => Ok(()),
+    }
 }
 
 /// [`by_nfa`]'s labels given its detections.
