@@ -29,7 +29,7 @@
 //! width 2ε ignores); at N 5000 that made chance support of pure outliers
 //! look meaningful (results/notes/selection.md, "Calibration").
 
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::Matrix3;
 
 /// Points `x₁` of the quasi-Monte-Carlo mean.
 pub const X1_SAMPLES: usize = 4096;
@@ -148,22 +148,17 @@ impl Background {
         } else {
             f / norm
         };
-        let ft = f.transpose();
         // R2: the positive root of x³ = x + 1.
         let g: f64 = 1.324_717_957_244_746;
         let alpha = [1.0 / g, 1.0 / (g * g)];
-        let mut slopes: Vec<f64> = (1..=X1_SAMPLES)
+        let x1: Vec<[f64; 2]> = (1..=X1_SAMPLES)
             .map(|i| {
                 let u = alpha.map(|a| (0.5 + a * i as f64).fract());
-                let x1 = Vector3::new(
-                    centre[0] + (u[0] - 0.5) * w,
-                    centre[1] + (u[1] - 0.5) * h,
-                    1.0,
-                );
-                slope(&f, &ft, &x1, image)
+                [centre[0] + (u[0] - 0.5) * w, centre[1] + (u[1] - 0.5) * h]
             })
             .collect();
-        slopes.sort_by(f64::total_cmp);
+        let mut slopes = band_slopes(&f, &x1, image);
+        sort_slopes(&mut slopes);
         let mut prefix = Vec::with_capacity(slopes.len() + 1);
         prefix.push(0.0);
         let mut sum = 0.0;
@@ -187,61 +182,118 @@ impl Background {
     }
 }
 
-/// `c(x₁)`: `(2 / A) ∫ √(1 + g₂(s) / g₁) ds` along the part of the
-/// epipolar line of `x₁` inside the image (0 when it misses the image,
-/// `+∞` when `x₁` is the epipole).
-fn slope(f: &Matrix3<f64>, ft: &Matrix3<f64>, x1: &Vector3<f64>, image: &ImageRect) -> f64 {
-    let l = f * x1;
-    let g1 = l.x * l.x + l.y * l.y;
-    if g1.is_nan() || g1 <= f64::MIN_POSITIVE {
-        return f64::INFINITY;
+/// `slopes` in `f64::total_cmp`'s order. Slopes are ≥ 0, and the bits of
+/// floats without a sign bit order as unsigned integers in that order,
+/// which sort faster than floats; any other value takes the comparison.
+fn sort_slopes(slopes: &mut [f64]) {
+    let sign = 1u64 << 63;
+    let mut bits: Vec<u64> = slopes.iter().map(|c| c.to_bits()).collect();
+    if bits.iter().any(|b| b & sign != 0) {
+        slopes.sort_unstable_by(f64::total_cmp);
+        return;
     }
-    let Some((p, q)) = clip(&l, g1, image) else {
-        return 0.0;
-    };
-    let (mid, half) = ((p + q) / 2.0, (q - p) / 2.0);
-    let length = (q - p).norm();
-    let integral: f64 = GL_NODES
-        .iter()
-        .zip(&GL_WEIGHTS)
-        .map(|(&t, &wt)| {
-            let x2 = mid + half * t;
-            let m = ft * Vector3::new(x2.x, x2.y, 1.0);
-            wt * (1.0 + (m.x * m.x + m.y * m.y) / g1).sqrt()
-        })
-        .sum::<f64>()
-        * length
-        / 2.0;
-    let [w, h] = image.sides();
-    2.0 * integral / (w * h)
+    bits.sort_unstable();
+    for (c, b) in slopes.iter_mut().zip(bits) {
+        *c = f64::from_bits(b);
+    }
 }
 
-/// The segment of the line `l` (`l · (x, y, 1) = 0`, `g = l₁² + l₂² > 0`)
-/// inside `image`, or None when it misses it.
-fn clip(
-    l: &Vector3<f64>,
-    g: f64,
-    image: &ImageRect,
-) -> Option<(nalgebra::Vector2<f64>, nalgebra::Vector2<f64>)> {
-    use nalgebra::Vector2;
-    // A point on the line and its direction.
-    let origin = Vector2::new(-l.x * l.z / g, -l.y * l.z / g);
-    let dir = Vector2::new(-l.y, l.x) / g.sqrt();
-    // Liang–Barsky: the interval of t with origin + t dir inside.
-    let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
-    for (o, d, i) in [(origin.x, dir.x, 0), (origin.y, dir.y, 1)] {
-        let (low, high) = (image.min[i], image.max[i]);
-        if d.abs() < 1e-15 {
-            if o < low || o > high {
-                return None;
-            }
-            continue;
-        }
-        let (a, b) = ((low - o) / d, (high - o) / d);
-        lo = lo.max(a.min(b));
-        hi = hi.min(a.max(b));
+/// Points `x₁` per step of [`band_slopes`]: the lanes of its arithmetic.
+const LANES: usize = 4;
+
+/// `c(x₁)` of every point of `x1` (image-1 coordinates):
+/// `(2 / A) ∫ √(1 + g₂(s) / g₁) ds` along the part of the epipolar line
+/// of `x₁` inside the image, 0 when the line misses the image, `+∞` when
+/// `x₁` is the epipole. [`LANES`] points at a time, each lane's
+/// arithmetic written out (no branch, a select at the end) so that the
+/// compiler runs the lanes in vector registers; every lane performs the
+/// IEEE operations of one point in the same order, so the answer does not
+/// depend on the lane count (the test against one point at a time).
+fn band_slopes(f: &Matrix3<f64>, x1: &[[f64; 2]], image: &ImageRect) -> Vec<f64> {
+    let mut out = Vec::with_capacity(x1.len());
+    let mut chunks = x1.chunks_exact(LANES);
+    for chunk in &mut chunks {
+        let x: [f64; LANES] = std::array::from_fn(|k| chunk[k][0]);
+        let y: [f64; LANES] = std::array::from_fn(|k| chunk[k][1]);
+        out.extend(slopes_lanes(f, x, y, image));
     }
-    (lo < hi).then(|| (origin + dir * lo, origin + dir * hi))
+    for p in chunks.remainder() {
+        out.push(slopes_lanes::<1>(f, [p[0]], [p[1]], image)[0]);
+    }
+    out
+}
+
+/// [`band_slopes`] of the `L` points `(x[k], y[k])`. Per point: the
+/// epipolar line `l = F x̃₁`, `g₁ = l₁² + l₂²`; its segment inside the
+/// image by Liang–Barsky (the interval of `t` with `origin + t dir`
+/// inside, `origin` the line's point nearest the origin, `dir` its unit
+/// direction); an 8-point Gauss–Legendre rule along it of
+/// `√(1 + g₂ / g₁)`, `g₂` the squared first two entries of `Fᵀ x̃₂`.
+#[inline(always)]
+fn slopes_lanes<const L: usize>(
+    f: &Matrix3<f64>,
+    x: [f64; L],
+    y: [f64; L],
+    image: &ImageRect,
+) -> [f64; L] {
+    let lane = |op: &dyn Fn(usize) -> f64| -> [f64; L] { std::array::from_fn(op) };
+    // l = F x̃₁.
+    let lx = lane(&|k| f[(0, 0)] * x[k] + f[(0, 1)] * y[k] + f[(0, 2)]);
+    let ly = lane(&|k| f[(1, 0)] * x[k] + f[(1, 1)] * y[k] + f[(1, 2)]);
+    let lz = lane(&|k| f[(2, 0)] * x[k] + f[(2, 1)] * y[k] + f[(2, 2)]);
+    let g1 = lane(&|k| lx[k] * lx[k] + ly[k] * ly[k]);
+    // The line's point nearest the origin and its unit direction.
+    let origin = [
+        lane(&|k| -lx[k] * lz[k] / g1[k]),
+        lane(&|k| -ly[k] * lz[k] / g1[k]),
+    ];
+    let root = lane(&|k| g1[k].sqrt());
+    let dir = [lane(&|k| -ly[k] / root[k]), lane(&|k| lx[k] / root[k])];
+    // Liang–Barsky, one axis after the other.
+    let (mut lo, mut hi) = ([f64::NEG_INFINITY; L], [f64::INFINITY; L]);
+    let mut misses = [false; L];
+    for i in 0..2 {
+        let (low, high) = (image.min[i], image.max[i]);
+        for k in 0..L {
+            let (o, d) = (origin[i][k], dir[i][k]);
+            let parallel = d.abs() < 1e-15;
+            misses[k] |= parallel && (o < low || o > high);
+            let (a, b) = ((low - o) / d, (high - o) / d);
+            if !parallel {
+                lo[k] = lo[k].max(a.min(b));
+                hi[k] = hi[k].min(a.max(b));
+            }
+        }
+    }
+    let p = [0, 1].map(|i| lane(&|k| origin[i][k] + dir[i][k] * lo[k]));
+    let q = [0, 1].map(|i| lane(&|k| origin[i][k] + dir[i][k] * hi[k]));
+    let mid = [0, 1].map(|i| lane(&|k| (p[i][k] + q[i][k]) / 2.0));
+    let half = [0, 1].map(|i| lane(&|k| (q[i][k] - p[i][k]) / 2.0));
+    let length = lane(&|k| {
+        let d = [q[0][k] - p[0][k], q[1][k] - p[1][k]];
+        (d[0] * d[0] + d[1] * d[1]).sqrt()
+    });
+    // ∫ √(1 + g₂(s) / g₁) ds, Gauss–Legendre.
+    let mut sum = [0.0; L];
+    for (&t, &wt) in GL_NODES.iter().zip(&GL_WEIGHTS) {
+        for k in 0..L {
+            let x2 = [mid[0][k] + half[0][k] * t, mid[1][k] + half[1][k] * t];
+            let m0 = f[(0, 0)] * x2[0] + f[(1, 0)] * x2[1] + f[(2, 0)];
+            let m1 = f[(0, 1)] * x2[0] + f[(1, 1)] * x2[1] + f[(2, 1)];
+            sum[k] += wt * (1.0 + (m0 * m0 + m1 * m1) / g1[k]).sqrt();
+        }
+    }
+    let [w, h] = image.sides();
+    lane(&|k| {
+        if g1[k].is_nan() || g1[k] <= f64::MIN_POSITIVE {
+            f64::INFINITY
+        } else if !misses[k] && lo[k] < hi[k] {
+            2.0 * (sum[k] * length[k] / 2.0) / (w * h)
+        } else {
+            // The line misses the image.
+            0.0
+        }
+    })
 }
 
 #[cfg(test)]
@@ -292,6 +344,98 @@ mod tests {
             .into_iter()
             .map(|t| (t, ki.transpose() * skew(t) * r * ki))
             .collect()
+    }
+
+    /// `c(x₁)` of one point the plain way, with nalgebra's products: the
+    /// reference of [`band_slopes`].
+    fn slope_of_one(f: &Matrix3<f64>, x1: [f64; 2], image: &ImageRect) -> f64 {
+        use nalgebra::{Vector2, Vector3};
+        let l = f * Vector3::new(x1[0], x1[1], 1.0);
+        let g1 = l.x * l.x + l.y * l.y;
+        if g1.is_nan() || g1 <= f64::MIN_POSITIVE {
+            return f64::INFINITY;
+        }
+        let origin = Vector2::new(-l.x * l.z / g1, -l.y * l.z / g1);
+        let dir = Vector2::new(-l.y, l.x) / g1.sqrt();
+        let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+        for (o, d, i) in [(origin.x, dir.x, 0), (origin.y, dir.y, 1)] {
+            let (low, high) = (image.min[i], image.max[i]);
+            if d.abs() < 1e-15 {
+                if o < low || o > high {
+                    return 0.0;
+                }
+                continue;
+            }
+            let (a, b) = ((low - o) / d, (high - o) / d);
+            lo = lo.max(a.min(b));
+            hi = hi.min(a.max(b));
+        }
+        if lo >= hi || lo.is_nan() || hi.is_nan() {
+            return 0.0;
+        }
+        let (p, q) = (origin + dir * lo, origin + dir * hi);
+        let (mid, half) = ((p + q) / 2.0, (q - p) / 2.0);
+        let integral: f64 = GL_NODES
+            .iter()
+            .zip(&GL_WEIGHTS)
+            .map(|(&t, &wt)| {
+                let x2 = mid + half * t;
+                let m = f.transpose() * Vector3::new(x2.x, x2.y, 1.0);
+                wt * (1.0 + (m.x * m.x + m.y * m.y) / g1).sqrt()
+            })
+            .sum::<f64>()
+            * (q - p).norm()
+            / 2.0;
+        let [w, h] = image.sides();
+        2.0 * integral / (w * h)
+    }
+
+    #[test]
+    fn the_lanes_give_the_bits_of_one_point_at_a_time() {
+        let mut rng = ChaCha8Rng::seed_from_u64(11);
+        let image = ImageRect::new((640, 480), [300.0, 250.0]);
+        // The test's fundamentals, one whose epipolar lines are
+        // horizontal (parallel to an image side), a zero F and random ones.
+        let mut fs: Vec<Matrix3<f64>> = fundamentals().into_iter().map(|(_, f)| f).collect();
+        fs.push(Matrix3::new(0.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0));
+        fs.push(Matrix3::zeros());
+        fs.extend((0..20).map(|_| Matrix3::from_fn(|_, _| rng.gen_range(-1.0..1.0))));
+        for f in &fs {
+            // 4099 points: whole chunks of lanes and a remainder; some
+            // off the image, one at each epipole-free corner.
+            let mut x1: Vec<[f64; 2]> = (0..4096)
+                .map(|_| [rng.gen_range(-400.0..400.0), rng.gen_range(-300.0..300.0)])
+                .collect();
+            x1.extend([image.min, image.max, [0.0, 0.0]]);
+            let lanes = band_slopes(f, &x1, &image);
+            for (p, c) in x1.iter().zip(&lanes) {
+                let one = slope_of_one(f, *p, &image);
+                assert_eq!(c.to_bits(), one.to_bits(), "f {f:?} x1 {p:?}: {c} vs {one}");
+            }
+        }
+    }
+
+    #[test]
+    fn slopes_sort_as_total_cmp_sorts_them() {
+        let mut rng = ChaCha8Rng::seed_from_u64(5);
+        let positive: Vec<f64> = (0..1000)
+            .map(|i| match i % 10 {
+                0 => 0.0,
+                1 => f64::INFINITY,
+                2 => f64::MIN_POSITIVE / 4.0,
+                _ => rng.gen_range(0.0..1e-2),
+            })
+            .collect();
+        let mut signed = positive.clone();
+        signed.extend([-0.0, -1.0, f64::NAN, -f64::NAN]);
+        for values in [positive, signed] {
+            let mut expected = values.clone();
+            expected.sort_by(f64::total_cmp);
+            let mut sorted = values;
+            sort_slopes(&mut sorted);
+            let bits = |v: &[f64]| v.iter().map(|c| c.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&sorted), bits(&expected));
+        }
     }
 
     #[test]

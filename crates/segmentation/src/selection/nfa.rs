@@ -440,6 +440,9 @@ pub(super) struct Model {
     f: Matrix3<f64>,
     /// Sampson distances (px) of every match to `f`.
     pub(super) residuals: Vec<f64>,
+    /// The matches by increasing distance, so that each significance
+    /// takes the distances of the matches that count in order.
+    by_distance: Vec<u32>,
     background: Background,
     /// Its background over the group's block, when one holds the group.
     block_background: Option<Background>,
@@ -457,10 +460,18 @@ impl Model {
         f: Matrix3<f64>,
         candidates: usize,
     ) -> Self {
+        let residuals = sampson_residuals(points, &f);
+        let mut by_distance: Vec<u32> = (0..residuals.len() as u32).collect();
+        by_distance.sort_unstable_by(|&a, &b| {
+            residuals[a as usize]
+                .total_cmp(&residuals[b as usize])
+                .then(a.cmp(&b))
+        });
         Self {
             kind,
             f,
-            residuals: sampson_residuals(points, &f),
+            residuals,
+            by_distance,
             background: Background::new(&f, image),
             block_background: block.map(|b| Background::with_x1_in(&f, b, image)),
             ln_candidates: (candidates as f64).ln(),
@@ -481,15 +492,14 @@ impl Model {
             (Scope::Block(mask), Some(b)) => (b, Some(mask), (block_count() as f64).ln()),
             (Scope::Block(_), None) => return Significance::NONE,
         };
-        let mut r: Vec<f64> = self
-            .residuals
+        // The distances that count, increasing: the sort of them.
+        let r: Vec<f64> = self
+            .by_distance
             .iter()
-            .zip(&explained.0)
-            .enumerate()
-            .filter(|&(m, (_, &e))| !e && mask.map_or(true, |inside| inside[m]))
-            .map(|(_, (&r, _))| r)
+            .map(|&m| m as usize)
+            .filter(|&m| !explained.0[m] && mask.map_or(true, |inside| inside[m]))
+            .map(|m| self.residuals[m])
             .collect();
-        r.sort_by(f64::total_cmp);
         let ln_tests = ln_tests + self.ln_candidates + ln_scope;
         let fitted = self.kind.fitted();
         significance_fitted(&r, ln_tests, background, thr_px, fitted)
