@@ -20,19 +20,14 @@
 //! significant with its own fit, and the test splits one motion into its
 //! fragments (results/notes/selection.md).
 
-use super::nfa::{fit_given, Explained, GroupFit, FITTED_MATCHES};
+use super::nfa::{fit_given, Explained, Fitting, GroupFit, FITTED_MATCHES};
 use super::uniqueness::Keypoints;
-use super::Camera;
-use geometry::{Correspondences, IrlsParams};
 
-/// What the detection tests a group against: the matches, the groups and
-/// the constants of `nfa::detect`.
+/// What the detection tests a group against: what its fits are made
+/// with, the groups and the constants of `nfa::detect`.
 pub(super) struct Context<'a> {
-    pub points: &'a Correspondences,
+    pub fitting: &'a Fitting<'a>,
     pub groups: &'a [Vec<usize>],
-    pub camera: &'a Camera,
-    pub thr_px: f64,
-    pub irls: &'a IrlsParams,
     /// ln of the tests every NFA counts before its models and scopes.
     pub ln_tests: f64,
     pub keypoints: &'a Keypoints,
@@ -70,7 +65,10 @@ pub(super) fn kept_apart(
 fn mostly_explained(ctx: &Context, h: usize, chosen: &Chosen, explained: &Explained) -> bool {
     let residuals = &chosen.fit.models[chosen.model].residuals;
     let own: Vec<usize> = explained.counting(&ctx.groups[h]).collect();
-    let within = own.iter().filter(|&&m| residuals[m] <= ctx.thr_px).count();
+    let within = own
+        .iter()
+        .filter(|&&m| residuals[m] <= ctx.fitting.thr_px)
+        .count();
     own.len() > FITTED_MATCHES && 2 * within > own.len()
 }
 
@@ -81,20 +79,20 @@ fn mostly_explained(ctx: &Context, h: usize, chosen: &Chosen, explained: &Explai
 fn pair_wins(ctx: &Context, h: usize, chosen: &Chosen, explained: &Explained) -> bool {
     let group_h = &ctx.groups[h];
     let barred = explained.barring(group_h);
-    let (alone, model) = chosen.fit.significance(&barred, ctx.ln_tests, ctx.thr_px);
+    let (alone, model) = chosen
+        .fit
+        .significance(&barred, ctx.ln_tests, ctx.fitting.thr_px);
     if !alone.is_significant() {
         return false;
     }
     let residuals = leaving_out(chosen.fit.models[model].residuals.clone(), group_h);
     let mut given = explained.clone();
-    given.add(&residuals, ctx.thr_px, ctx.keypoints);
+    given.add(&residuals, ctx.fitting.thr_px, ctx.keypoints);
     let mut cache = None;
-    let Some(fit) = fit_given(
-        ctx.points, group_h, &given, ctx.irls, ctx.camera, ctx.thr_px, &mut cache,
-    ) else {
+    let Some(fit) = fit_given(ctx.fitting, group_h, &given, &mut cache) else {
         return false;
     };
-    let (other, _) = fit.significance(&given, ctx.ln_tests, ctx.thr_px);
+    let (other, _) = fit.significance(&given, ctx.ln_tests, ctx.fitting.thr_px);
     other.is_significant() && alone.ln_nfa + other.ln_nfa < chosen.ln_nfa
 }
 

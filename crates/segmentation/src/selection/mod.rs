@@ -267,22 +267,14 @@ pub fn select_clustered(
     check_indices(points, groups.iter().flatten().chain(in_sides))?;
     check_scene(camera, thr_px)?;
     let irls = refit_params(thr_px);
-    let scene = split::Scene {
+    let fitting = nfa::Fitting {
         points,
         camera: &camera,
         thr_px,
         irls: &irls,
     };
-    let (groups, fits) = split::split_groups(&scene, groups, sides);
-    let detections = nfa::detect_fitted(
-        points,
-        &groups,
-        fits,
-        GroupOrigin::Clustered,
-        &camera,
-        thr_px,
-        &irls,
-    );
+    let (groups, fits) = split::split_groups(&fitting, groups, sides);
+    let detections = nfa::detect_fitted(&fitting, &groups, fits, GroupOrigin::Clustered);
     let labels = label_detected(points, &groups, &detections, thr_px);
     Ok(Selection::of(labels))
 }

@@ -189,20 +189,38 @@ pub fn detect(
     irls: &IrlsParams,
 ) -> Vec<Detection> {
     let fits = groups.iter().map(|_| None).collect();
-    detect_fitted(points, groups, fits, origin, camera, thr_px, irls)
+    let fitting = Fitting {
+        points,
+        camera,
+        thr_px,
+        irls,
+    };
+    detect_fitted(&fitting, groups, fits, origin)
+}
+
+/// What every fit and score of a group is made with: the matches, the
+/// camera, the inlier threshold `thr_px` and the refit's parameters.
+pub(super) struct Fitting<'a> {
+    pub points: &'a Correspondences,
+    pub camera: &'a Camera,
+    pub thr_px: f64,
+    pub irls: &'a IrlsParams,
 }
 
 /// [`detect`] with some groups' fits given nothing explained already made
 /// (`fits[g]`, by [`fit_given`] with [`Explained::none`]; None: not made).
 pub(super) fn detect_fitted(
-    points: &Correspondences,
+    fitting: &Fitting,
     groups: &[Vec<usize>],
     mut fits: Vec<Option<Cached>>,
     origin: GroupOrigin,
-    camera: &Camera,
-    thr_px: f64,
-    irls: &IrlsParams,
 ) -> Vec<Detection> {
+    let &Fitting {
+        points,
+        thr_px,
+        irls,
+        ..
+    } = fitting;
     let n = points.len();
     let mut remaining: Vec<usize> = (0..groups.len())
         .filter(|&i| groups[i].len() > FITTED_MATCHES)
@@ -216,11 +234,8 @@ pub(super) fn detect_fitted(
     let mut explained = Explained::none(n);
     let mut detections = Vec::new();
     let ctx = Context {
-        points,
+        fitting,
         groups,
-        camera,
-        thr_px,
-        irls,
         ln_tests,
         keypoints: &keypoints,
     };
@@ -229,15 +244,7 @@ pub(super) fn detect_fitted(
             .iter()
             .enumerate()
             .filter_map(|(pos, &i)| {
-                let fit = fit_given(
-                    points,
-                    &groups[i],
-                    &explained,
-                    irls,
-                    camera,
-                    thr_px,
-                    &mut fits[i],
-                )?;
+                let fit = fit_given(fitting, &groups[i], &explained, &mut fits[i])?;
                 let (significance, model) = fit.significance(&explained, ln_tests, thr_px);
                 Some((pos, i, significance, model))
             })
@@ -544,14 +551,17 @@ pub(super) struct Cached {
 /// matches became explained since; None when fewer than 8 of its matches
 /// count or the fit fails.
 pub(super) fn fit_given<'a>(
-    points: &Correspondences,
+    fitting: &Fitting,
     group: &[usize],
     explained: &Explained,
-    irls: &IrlsParams,
-    camera: &Camera,
-    thr_px: f64,
     cache: &'a mut Option<Cached>,
 ) -> Option<&'a GroupFit> {
+    let &Fitting {
+        points,
+        camera,
+        thr_px,
+        irls,
+    } = fitting;
     let own_len = explained.counting(group).count();
     if own_len <= FITTED_MATCHES {
         *cache = None;
@@ -604,10 +614,14 @@ mod tests {
             let mut explained = Explained::none(points.len());
             explained.add(&detections[0].residuals, THR_PX, &Keypoints::new(&points));
             let mut cache = None;
-            let fit = fit_given(
-                &points, &groups[1], &explained, &irls, &camera, THR_PX, &mut cache,
-            )
-            .expect("the object is fitted");
+            let fitting = Fitting {
+                points: &points,
+                camera: &camera,
+                thr_px: THR_PX,
+                irls: &irls,
+            };
+            let fit = fit_given(&fitting, &groups[1], &explained, &mut cache)
+                .expect("the object is fitted");
             assert!(fit.block.is_some(), "k {k} seed {seed}: a block holds it");
             let ln_tests = (2.0 * (points.len() - 7) as f64 * 4.0).ln();
             for m in &fit.models {

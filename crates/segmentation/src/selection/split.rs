@@ -14,9 +14,8 @@
 //!    Chow's test (Chow 1960) of the union's refitted F against the sides'
 //!    (`chow_p`), p < [`SPLIT_ALPHA`].
 
-use super::nfa::{fit_given, Cached, Explained, GroupFit, FITTED_MATCHES};
-use super::{refit, Camera};
-use geometry::{Correspondences, IrlsParams};
+use super::nfa::{fit_given, Cached, Explained, Fitting, GroupFit, FITTED_MATCHES};
+use super::refit;
 use statrs::distribution::{ContinuousCDF, FisherSnedecor};
 
 /// The level of Chow's test. With α 10⁻³ the wide validation's mean ME
@@ -25,23 +24,15 @@ use statrs::distribution::{ContinuousCDF, FisherSnedecor};
 /// motion's two halves split (results/notes/selection.md, ninth round).
 pub const SPLIT_ALPHA: f64 = 1e-6;
 
-/// What a split is decided with.
-pub(super) struct Scene<'a> {
-    pub points: &'a Correspondences,
-    pub camera: &'a Camera,
-    pub thr_px: f64,
-    pub irls: &'a IrlsParams,
-}
-
 /// `groups`, each replaced by its two `sides` (indices into the matches)
 /// where they are two motions (the module's three conditions); with the
 /// fits made on the way (nothing explained), which the detection reuses.
 pub(super) fn split_groups(
-    scene: &Scene,
+    fitting: &Fitting,
     groups: &[Vec<usize>],
     sides: &[Option<[Vec<usize>; 2]>],
 ) -> (Vec<Vec<usize>>, Vec<Option<Cached>>) {
-    let n = scene.points.len();
+    let n = fitting.points.len();
     if n <= FITTED_MATCHES {
         return (groups.to_vec(), groups.iter().map(|_| None).collect());
     }
@@ -57,7 +48,7 @@ pub(super) fn split_groups(
     {
         let mut cached: [Option<Cached>; 3] = [None, None, None];
         match sides {
-            Some([a, b]) if are_two_motions(scene, group, [a, b], ln_tests, &mut cached) => {
+            Some([a, b]) if are_two_motions(fitting, group, [a, b], ln_tests, &mut cached) => {
                 let [_, fa, fb] = cached;
                 out.extend([a.clone(), b.clone()]);
                 fits.extend([fa, fb]);
@@ -75,33 +66,25 @@ pub(super) fn split_groups(
 /// The module's three conditions for `group` and its two sides; the fits
 /// made (nothing explained) in `cached`: the group's, then the sides'.
 fn are_two_motions(
-    scene: &Scene,
+    fitting: &Fitting,
     group: &[usize],
     sides: [&[usize]; 2],
     ln_tests: f64,
     cached: &mut [Option<Cached>; 3],
 ) -> bool {
-    if !passes_screen(scene, group, sides) {
+    if !passes_screen(fitting, group, sides) {
         return false;
     }
-    let none = Explained::none(scene.points.len());
+    let none = Explained::none(fitting.points.len());
     let [union_fit, a_fit, b_fit] = cached;
     let residuals =
         |g: &[usize], cache: &mut Option<Cached>, pick: &dyn Fn(&GroupFit) -> Option<usize>| {
-            let fitted = fit_given(
-                scene.points,
-                g,
-                &none,
-                scene.irls,
-                scene.camera,
-                scene.thr_px,
-                cache,
-            )?;
+            let fitted = fit_given(fitting, g, &none, cache)?;
             pick(fitted).map(|m| fitted.models[m].residuals.clone())
         };
     // 1: each side's best model, when significant alone.
     let best = |fit: &GroupFit| {
-        let (significance, model) = fit.significance(&none, ln_tests, scene.thr_px);
+        let (significance, model) = fit.significance(&none, ln_tests, fitting.thr_px);
         significance.is_significant().then_some(model)
     };
     let Some(ra) = residuals(sides[0], a_fit, &best) else {
@@ -111,8 +94,9 @@ fn are_two_motions(
         return false;
     };
     // 2: neither explains most of the other.
-    let explains =
-        |r: &[f64], s: &[usize]| 2 * s.iter().filter(|&&i| r[i] <= scene.thr_px).count() > s.len();
+    let explains = |r: &[f64], s: &[usize]| {
+        2 * s.iter().filter(|&&i| r[i] <= fitting.thr_px).count() > s.len()
+    };
     if explains(&ra, sides[1]) || explains(&rb, sides[0]) {
         return false;
     }
@@ -121,7 +105,7 @@ fn are_two_motions(
     let Some(ru) = residuals(group, union_fit, &|_| Some(0)) else {
         return false;
     };
-    chow_p(&ru, [(sides[0], &ra), (sides[1], &rb)], scene.thr_px) < SPLIT_ALPHA
+    chow_p(&ru, [(sides[0], &ra), (sides[1], &rb)], fitting.thr_px) < SPLIT_ALPHA
 }
 
 /// The level of the screen before the three conditions: Chow's test with
@@ -135,23 +119,23 @@ const SCREEN_ALPHA: f64 = 1e-2;
 
 /// Whether Chow's test with the refitted Fs of `group` and its `sides`
 /// gives p < [`SCREEN_ALPHA`].
-fn passes_screen(scene: &Scene, group: &[usize], sides: [&[usize]; 2]) -> bool {
-    let n = scene.points.len();
+fn passes_screen(fitting: &Fitting, group: &[usize], sides: [&[usize]; 2]) -> bool {
+    let n = fitting.points.len();
     let distances = |f: Option<nalgebra::Matrix3<f64>>, at: &[&[usize]]| {
         let mut r = vec![f64::INFINITY; n];
         if let Some(f) = f {
             for &i in at.iter().copied().flatten() {
-                let (p1, p2) = (scene.points.point1(i), scene.points.point2(i));
+                let (p1, p2) = (fitting.points.point1(i), fitting.points.point2(i));
                 r[i] = geometry::sampson_distance(&f, p1, p2);
             }
         }
         r
     };
-    let fit = |g: &[usize]| refit(scene.points, g, scene.irls);
+    let fit = |g: &[usize]| refit(fitting.points, g, fitting.irls);
     let ru = distances(fit(group), &sides);
     let ra = distances(fit(sides[0]), &sides[..1]);
     let rb = distances(fit(sides[1]), &sides[1..]);
-    chow_p(&ru, [(sides[0], &ra), (sides[1], &rb)], scene.thr_px) < SCREEN_ALPHA
+    chow_p(&ru, [(sides[0], &ra), (sides[1], &rb)], fitting.thr_px) < SCREEN_ALPHA
 }
 
 /// Chow's test (Chow 1960) of one F for both sides against one F each,
