@@ -44,53 +44,6 @@ pub fn last_sides(clustering: &Clustering, min: usize) -> Vec<Option<Sides>> {
     out
 }
 
-/// PROTOTYPE (SCTL_PROTO_BALANCED): for each cluster, the most balanced
-/// merge of two clusters of at least `min` points in its history (the
-/// largest smaller side Y), as [the cluster without Y, Y].
-pub fn balanced_sides(clustering: &Clustering, min: usize) -> Vec<Option<Sides>> {
-    let n = clustering.labels.len();
-    let mut members: Vec<Vec<usize>> = (0..n).map(|i| vec![i]).collect();
-    let mut best: Vec<Option<Vec<usize>>> = vec![None; n];
-    for m in &clustering.merges {
-        let removed = std::mem::take(&mut members[m.removed]);
-        let removed_best = best[m.removed].take();
-        let mut cand = best[m.kept].take();
-        if removed_best.as_ref().map_or(0, Vec::len) > cand.as_ref().map_or(0, Vec::len) {
-            cand = removed_best;
-        }
-        if members[m.kept].len() >= min && removed.len() >= min {
-            let smaller = if removed.len() <= members[m.kept].len() {
-                removed.clone()
-            } else {
-                members[m.kept].clone()
-            };
-            if smaller.len() > cand.as_ref().map_or(0, |c| c.len()) {
-                cand = Some(smaller);
-            }
-        }
-        best[m.kept] = cand;
-        members[m.kept].extend(removed);
-    }
-    let clusters = clustering.clusters_after_filter;
-    let mut out = vec![None; clusters];
-    let mut seen = vec![false; clusters];
-    for (i, &l) in clustering.labels.iter().enumerate() {
-        if let Ok(l) = usize::try_from(l) {
-            if l < clusters && !seen[l] {
-                seen[l] = true;
-                out[l] = best[i].take().map(|y| {
-                    let mut inside = vec![false; n];
-                    y.iter().for_each(|&j| inside[j] = true);
-                    let rest: Vec<usize> =
-                        members[i].iter().copied().filter(|&j| !inside[j]).collect();
-                    [rest, y]
-                });
-            }
-        }
-    }
-    out
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

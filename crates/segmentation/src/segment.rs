@@ -269,14 +269,8 @@ fn cluster_kept(
     let t = Instant::now();
     // Where every match was clustered, the two sides of each cluster's
     // last merge, which the selection may split it into.
-    let sides =
-        (params.selection.final_assignment == FinalAssignment::Nfa && !subset_active).then(|| {
-            if std::env::var_os("SCTL_PROTO_BALANCED").is_some() {
-                clustering::dendrogram::balanced_sides(&clustering, FITTED_MATCHES + 1)
-            } else {
-                last_sides(&clustering, FITTED_MATCHES + 1)
-            }
-        });
+    let sides = (params.selection.final_assignment == FinalAssignment::Nfa && !subset_active)
+        .then(|| last_sides(&clustering, FITTED_MATCHES + 1));
     let (labels, clusters) = match params.selection.final_assignment {
         FinalAssignment::Merge => with_count(merge_explained(
             &clustering.labels,
