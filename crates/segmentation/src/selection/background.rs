@@ -205,7 +205,7 @@ const LANES: usize = 4;
 /// `(2 / A) ∫ √(1 + g₂(s) / g₁) ds` along the part of the epipolar line
 /// of `x₁` inside the image, 0 when the line misses the image, `+∞` when
 /// `x₁` is the epipole. [`LANES`] points at a time, each lane's
-/// arithmetic written out (no branch, a select at the end) so that the
+/// arithmetic written out (selects instead of early returns) so that the
 /// compiler runs the lanes in vector registers; every lane performs the
 /// IEEE operations of one point in the same order, so the answer does not
 /// depend on the lane count (the test against one point at a time).
