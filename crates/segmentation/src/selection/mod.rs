@@ -39,6 +39,7 @@ mod vote;
 pub use background::{Background, ImageRect};
 pub use binomial::ln_binomial_tail;
 
+use clustering::dendrogram::Sides;
 use geometry::{sampson_distances_squared, Correspondences, IrlsParams, IrlsWorkspace};
 use nalgebra::Matrix3;
 use thiserror::Error;
@@ -65,6 +66,14 @@ pub enum SelectionError {
         index: usize,
         /// Number of matches.
         points: usize,
+    },
+    /// The split's sides and the groups differ in number.
+    #[error("selection: {sides} entries of sides for {groups} groups (one per group, None where a group has none)")]
+    SidesMismatch {
+        /// Number of entries of sides.
+        sides: usize,
+        /// Number of groups.
+        groups: usize,
     },
     /// A label below −1.
     #[error("selection: label {label} of match {index} is below -1 (the outlier label)")]
@@ -255,14 +264,21 @@ pub fn select_groups(
 /// [`clustering::dendrogram::last_sides`]) where they are two motions
 /// (the conditions of [`split`]).
 ///
-/// Errors: those of [`select_groups`], a side's index out of range.
+/// Errors: those of [`select_groups`], a side's index out of range,
+/// `sides` and `groups` of different lengths.
 pub fn select_clustered(
     points: &Correspondences,
     groups: &[Vec<usize>],
-    sides: &[Option<[Vec<usize>; 2]>],
+    sides: &[Option<Sides>],
     camera: Camera,
     thr_px: f64,
 ) -> Result<Selection, SelectionError> {
+    if sides.len() != groups.len() {
+        return Err(SelectionError::SidesMismatch {
+            sides: sides.len(),
+            groups: groups.len(),
+        });
+    }
     let in_sides = sides.iter().flatten().flatten().flatten();
     check_indices(points, groups.iter().flatten().chain(in_sides))?;
     check_scene(camera, thr_px)?;

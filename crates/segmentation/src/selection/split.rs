@@ -16,6 +16,7 @@
 
 use super::nfa::{fit_given, Cached, Explained, Fitting, GroupFit, FITTED_MATCHES};
 use super::refit;
+use clustering::dendrogram::Sides;
 use statrs::distribution::{ContinuousCDF, FisherSnedecor};
 
 /// The level of Chow's test. With α 10⁻³ the wide validation's mean ME
@@ -24,13 +25,14 @@ use statrs::distribution::{ContinuousCDF, FisherSnedecor};
 /// motion's two halves split (results/notes/selection.md, ninth round).
 pub const SPLIT_ALPHA: f64 = 1e-6;
 
-/// `groups`, each replaced by its two `sides` (indices into the matches)
-/// where they are two motions (the module's three conditions); with the
-/// fits made on the way (nothing explained), which the detection reuses.
+/// `groups`, each replaced by its two sides (`sides[g]`, indices into the
+/// matches; one entry per group) where they are two motions (the module's
+/// three conditions); with the fits made on the way (nothing explained),
+/// which the detection reuses.
 pub(super) fn split_groups(
     fitting: &Fitting,
     groups: &[Vec<usize>],
-    sides: &[Option<[Vec<usize>; 2]>],
+    sides: &[Option<Sides>],
 ) -> (Vec<Vec<usize>>, Vec<Option<Cached>>) {
     let n = fitting.points.len();
     if n <= FITTED_MATCHES {
@@ -42,10 +44,7 @@ pub(super) fn split_groups(
     let ln_tests = ((eligible + 2 * candidates) as f64).ln() + ((n - FITTED_MATCHES) as f64).ln();
     let mut out = Vec::with_capacity(groups.len() + candidates);
     let mut fits = Vec::with_capacity(groups.len() + candidates);
-    for (group, sides) in groups
-        .iter()
-        .zip(sides.iter().chain(std::iter::repeat(&None)))
-    {
+    for (group, sides) in groups.iter().zip(sides) {
         let mut cached: [Option<Cached>; 3] = [None, None, None];
         match sides {
             Some([a, b]) if are_two_motions(fitting, group, [a, b], ln_tests, &mut cached) => {
@@ -231,6 +230,20 @@ mod tests {
         assert_eq!(split.motions, 3);
         let kept = select_clustered(&s.points(), &groups, &[None, None], camera(), THR_PX).unwrap();
         assert!(kept.motions < 3, "without the sides: {}", kept.motions);
+    }
+
+    #[test]
+    fn sides_for_another_number_of_groups_are_an_error() {
+        let (s, a, b) = two_objects();
+        let groups = vec![a.clone(), b.clone()];
+        let err = select_clustered(&s.points(), &groups, &[None], camera(), THR_PX).unwrap_err();
+        assert_eq!(
+            err,
+            super::super::SelectionError::SidesMismatch {
+                sides: 1,
+                groups: 2
+            }
+        );
     }
 
     #[test]
