@@ -139,11 +139,12 @@ impl Counts {
                 continue;
             }
             let unclustered = idx.iter().filter(|&&i| clustered[i] < 0).count();
-            match holder(clustered, &idx) {
+            // The true motion most of the cluster holding most of it is.
+            let holder_truth = holder(clustered, &idx).map(|(l, _)| majority(clustered, truth, l));
+            match holder_truth {
                 _ if held(clustered).is_some() => self.own_cluster += 1,
-                Some((l, _)) if ![0, t].contains(&majority(clustered, truth, l)) => {
+                Some(other) if ![0, t].contains(&other) => {
                     self.merged += 1;
-                    let other = majority(clustered, truth, l);
                     if 2 * within_other_f(scene, &idx, other, thr_px) > idx.len() {
                         self.merged_within += 1;
                     }
