@@ -290,8 +290,7 @@ pub fn select_clustered(
         irls: &irls,
     };
     let (groups, fits) = split::split_groups(&fitting, groups, sides);
-    let (detections, groups) =
-        nfa::detect_with_residuals(&fitting, &groups, fits, GroupOrigin::Clustered);
+    let detections = nfa::detect_fitted(&fitting, &groups, fits, GroupOrigin::Clustered);
     let labels = label_detected(points, &groups, &detections, thr_px);
     Ok(Selection::of(labels))
 }
@@ -313,15 +312,8 @@ fn by_nfa(
     thr_px: f64,
     irls: &IrlsParams,
 ) -> Vec<i32> {
-    let fitting = nfa::Fitting {
-        points,
-        camera,
-        thr_px,
-        irls,
-    };
-    let fits = groups.iter().map(|_| None).collect();
-    let (detections, groups) = nfa::detect_with_residuals(&fitting, groups, fits, origin);
-    label_detected(points, &groups, &detections, thr_px)
+    let detections = nfa::detect(points, groups, origin, camera, thr_px, irls);
+    label_detected(points, groups, &detections, thr_px)
 }
 
 /// Every index in `indices` names one of `points`

@@ -212,33 +212,9 @@ pub(super) struct Fitting<'a> {
 pub(super) fn detect_fitted(
     fitting: &Fitting,
     groups: &[Vec<usize>],
-    fits: Vec<Option<Cached>>,
-    origin: GroupOrigin,
-) -> Vec<Detection> {
-    detect_with_residuals(fitting, groups, fits, origin).0
-}
-
-/// The prototype's switch: `SCTL_PROTO_RESIDUAL` = `1` (clustered groups,
-/// G tests), `2g` (clustered, 2G tests), `all` (every origin, 2G tests).
-fn proto_residual(origin: GroupOrigin) -> Option<bool> {
-    match (std::env::var("SCTL_PROTO_RESIDUAL").as_deref(), origin) {
-        (Ok("1"), GroupOrigin::Clustered) => Some(false),
-        (Ok("2g"), GroupOrigin::Clustered) | (Ok("all"), _) => Some(true),
-        _ => None,
-    }
-}
-
-/// [`detect_fitted`] and the groups its detections index: the input's,
-/// then (prototype) each detected group's members it leaves unexplained.
-pub(super) fn detect_with_residuals(
-    fitting: &Fitting,
-    groups: &[Vec<usize>],
     mut fits: Vec<Option<Cached>>,
     origin: GroupOrigin,
-) -> (Vec<Detection>, Vec<Vec<usize>>) {
-    let residual = proto_residual(origin);
-    let first_generation = groups.len();
-    let mut groups: Vec<Vec<usize>> = groups.to_vec();
+) -> Vec<Detection> {
     let &Fitting {
         points,
         thr_px,
@@ -250,18 +226,19 @@ pub(super) fn detect_with_residuals(
         .filter(|&i| groups[i].len() > FITTED_MATCHES)
         .collect();
     if remaining.is_empty() || n <= FITTED_MATCHES {
-        return (Vec::new(), groups);
+        return Vec::new();
     }
-    let ln_groups = (remaining.len() as f64).ln()
-        + if residual == Some(true) {
-            2f64.ln()
-        } else {
-            0.0
-        };
+    let ln_groups = (remaining.len() as f64).ln();
     let ln_tests = ln_groups + ((n - FITTED_MATCHES) as f64).ln();
     let keypoints = Keypoints::new(points);
     let mut explained = Explained::none(n);
     let mut detections = Vec::new();
+    let ctx = Context {
+        fitting,
+        groups,
+        ln_tests,
+        keypoints: &keypoints,
+    };
     loop {
         let best = remaining
             .iter()
@@ -285,12 +262,6 @@ pub(super) fn detect_with_residuals(
             .expect("a scored group has its fit");
         let apart = match origin {
             GroupOrigin::Clustered => {
-                let ctx = Context {
-                    fitting,
-                    groups: &groups,
-                    ln_tests,
-                    keypoints: &keypoints,
-                };
                 let chosen = Chosen {
                     group,
                     fit: &fit,
@@ -319,14 +290,6 @@ pub(super) fn detect_with_residuals(
         };
         let residuals = leaving_out(residuals, apart_matches());
         explained.add(&residuals, thr_px, &keypoints);
-        if residual.is_some() && group < first_generation {
-            let left: Vec<usize> = explained.counting(&groups[group]).collect();
-            if left.len() > FITTED_MATCHES {
-                remaining.push(groups.len());
-                groups.push(left);
-                fits.push(None);
-            }
-        }
         detections.push(Detection {
             group,
             f,
@@ -334,7 +297,7 @@ pub(super) fn detect_with_residuals(
             residuals,
         });
     }
-    (detections, groups)
+    detections
 }
 
 /// Whether the matches of `group` that count map image-1 neighbours to
