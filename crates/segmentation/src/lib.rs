@@ -51,6 +51,7 @@ mod result;
 mod sampling;
 mod segment;
 pub mod selection;
+mod semical_refit;
 mod subset;
 mod variants;
 mod weight_sets;
