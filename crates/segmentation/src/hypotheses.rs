@@ -145,7 +145,7 @@ pub fn generate_hypotheses_cancellable(
 
         let t = Instant::now();
         cancel.check()?;
-        let refined = refine_fits(&points, &fits, params, cancel, matches.focal_prior);
+        let refined = refine_fits(&points, &fits, params, cancel);
         cancel.check()?;
         refine_seconds += t.elapsed().as_secs_f64();
         fitted.extend(fits.iter().map(Option::is_some));
@@ -254,24 +254,9 @@ fn refine_fits(
     fits: &[Option<SampleFit>],
     params: &Params,
     cancel: &Cancel,
-    focal: f64,
 ) -> Vec<Option<Matrix3<f64>>> {
     if !params.refinement.refine {
         return fits.iter().map(|fit| fit.as_ref().map(|s| s.f)).collect();
-    }
-    let proto: Option<usize> = std::env::var("SCTL_PROTO_EREFIT")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .filter(|_| params.sampling.minimal_solver == MinimalSolver::FivePoint);
-    if let Some(iters) = proto {
-        let thr = params.refinement.thr_px;
-        return fits
-            .par_iter()
-            .map(|fit| {
-                let fit = fit.as_ref().filter(|_| !cancel.is_cancelled())?;
-                crate::semical_refit::refit(points, &fit.f, focal, thr, iters)
-            })
-            .collect();
     }
     let irls = params.irls();
     fits.par_iter()

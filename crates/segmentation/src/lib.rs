@@ -51,7 +51,6 @@ mod result;
 mod sampling;
 mod segment;
 pub mod selection;
-mod semical_refit;
 mod subset;
 mod variants;
 mod weight_sets;
