@@ -33,6 +33,7 @@ pub mod semicalibrated;
 pub mod split;
 #[cfg(test)]
 mod tests;
+pub mod two_means;
 pub mod uniqueness;
 mod vote;
 
@@ -261,8 +262,9 @@ pub fn select_groups(
 /// [`select_groups`] where every match was clustered
 /// ([`GroupOrigin::Clustered`]), each group first replaced by the two
 /// sides of its last merge (`sides[g]`, from
-/// [`clustering::dendrogram::last_sides`]) where they are two motions
-/// (the conditions of [`split`]).
+/// [`clustering::dendrogram::last_sides`]), or else by the two sides of
+/// its [`two_means::two_means`], where they are two motions (the
+/// conditions of [`split`]).
 ///
 /// Errors: those of [`select_groups`], a side's index out of range,
 /// `sides` and `groups` of different lengths.

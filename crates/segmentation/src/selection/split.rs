@@ -1,11 +1,15 @@
-//! A cluster split in the two clusters whose merge made it, when they are
-//! two motions: T-Linkage joins two small objects that hypotheses drawn
-//! or refitted across both fit within `thr_px`, though neither object's
-//! own F explains the other (results/notes/selection.md, ninth round).
+//! A cluster split in two, when it holds two motions: T-Linkage joins two
+//! small objects that hypotheses drawn or refitted across both fit within
+//! `thr_px`, though neither object's own F explains the other
+//! (results/notes/selection.md, ninth and tenth rounds).
 //!
-//! The sides of a group (the last merge of two clusters of more than
-//! [`FITTED_MATCHES`] matches, [`clustering::dendrogram::last_sides`]) replace
-//! it when
+//! A group has up to two candidate splits: the two clusters of its last
+//! merge of two clusters of more than [`FITTED_MATCHES`] matches
+//! ([`clustering::dendrogram::last_sides`]), then its matches in two by
+//! where they lie ([`two_means`]: objects are compact, and a motion merged
+//! into another's cluster rarely forms a sizeable cluster of its own
+//! before it joins, so no merge of the dendrogram separates it). The first
+//! candidate whose two sides pass replaces the group, when
 //! 1. each side is significant alone (its best model's NFA < 1 over every
 //!    match, as in [`super::nfa::detect`]);
 //! 2. neither side's model explains (within `thr_px`) more than half of
@@ -13,10 +17,14 @@
 //! 3. one F for both fits them worse than one F each beyond chance:
 //!    Chow's test (Chow 1960) of the union's refitted F against the sides'
 //!    (`chow_p`), p < [`SPLIT_ALPHA`].
+//!
+//! Every candidate's sides count as tests of condition 1.
 
 use super::nfa::{fit_given, Cached, Explained, Fitting, GroupFit, FITTED_MATCHES};
 use super::refit;
+use super::two_means::two_means;
 use clustering::dendrogram::Sides;
+use nalgebra::Matrix3;
 use statrs::distribution::{ContinuousCDF, FisherSnedecor};
 
 /// The level of Chow's test. With α 10⁻³ the wide validation's mean ME
@@ -25,10 +33,11 @@ use statrs::distribution::{ContinuousCDF, FisherSnedecor};
 /// motion's two halves split (results/notes/selection.md, ninth round).
 pub const SPLIT_ALPHA: f64 = 1e-6;
 
-/// `groups`, each replaced by its two sides (`sides[g]`, indices into the
-/// matches; one entry per group) where they are two motions (the module's
-/// three conditions); with the fits made on the way (nothing explained),
-/// which the detection reuses.
+/// `groups`, each replaced by the two sides of its first candidate split
+/// (`sides[g]`, indices into the matches, one entry per group; then the
+/// group's [`two_means`]) where they are two motions (the module's three
+/// conditions); with the fits made on the way (nothing explained), which
+/// the detection reuses.
 pub(super) fn split_groups(
     fitting: &Fitting,
     groups: &[Vec<usize>],
@@ -38,44 +47,80 @@ pub(super) fn split_groups(
     if n <= FITTED_MATCHES {
         return (groups.to_vec(), groups.iter().map(|_| None).collect());
     }
+    let candidates: Vec<Vec<Sides>> = groups
+        .iter()
+        .zip(sides)
+        .map(|(group, sides)| {
+            let by_place = two_means(fitting.points, group, FITTED_MATCHES + 1);
+            sides.iter().cloned().chain(by_place).collect()
+        })
+        .collect();
     // The tests: every group and side that may be scored, N − 7 thresholds.
-    let candidates = sides.iter().flatten().count();
+    let count = candidates.iter().map(Vec::len).sum::<usize>();
     let eligible = groups.iter().filter(|g| g.len() > FITTED_MATCHES).count();
-    let ln_tests = ((eligible + 2 * candidates) as f64).ln() + ((n - FITTED_MATCHES) as f64).ln();
-    let mut out = Vec::with_capacity(groups.len() + candidates);
-    let mut fits = Vec::with_capacity(groups.len() + candidates);
-    for (group, sides) in groups.iter().zip(sides) {
-        let mut cached: [Option<Cached>; 3] = [None, None, None];
-        match sides {
-            Some([a, b]) if are_two_motions(fitting, group, [a, b], ln_tests, &mut cached) => {
-                let [_, fa, fb] = cached;
-                out.extend([a.clone(), b.clone()]);
-                fits.extend([fa, fb]);
+    let ln_tests = ((eligible + 2 * count) as f64).ln() + ((n - FITTED_MATCHES) as f64).ln();
+    let mut out = Vec::with_capacity(groups.len() + count);
+    let mut fits = Vec::with_capacity(groups.len() + count);
+    for (group, candidates) in groups.iter().zip(candidates) {
+        let mut union = Union::new(group);
+        let split = candidates.into_iter().find_map(|[a, b]| {
+            let mut side_fits = [None, None];
+            are_two_motions(fitting, &mut union, [&a, &b], ln_tests, &mut side_fits)
+                .then_some(([a, b], side_fits))
+        });
+        match split {
+            Some((sides, side_fits)) => {
+                out.extend(sides);
+                fits.extend(side_fits);
             }
-            _ => {
-                let [fu, _, _] = cached;
+            None => {
                 out.push(group.clone());
-                fits.push(fu);
+                fits.push(union.fit);
             }
         }
     }
     (out, fits)
 }
 
-/// The module's three conditions for `group` and its two sides; the fits
-/// made (nothing explained) in `cached`: the group's, then the sides'.
+/// A group whose candidate splits are tested, with what their tests
+/// share, each made once: its fit (nothing explained) and its refitted F.
+struct Union<'g> {
+    group: &'g [usize],
+    fit: Option<Cached>,
+    refitted: Option<Option<Matrix3<f64>>>,
+}
+
+impl<'g> Union<'g> {
+    fn new(group: &'g [usize]) -> Self {
+        Self {
+            group,
+            fit: None,
+            refitted: None,
+        }
+    }
+
+    /// Its F refitted by IRLS-Tukey (None where the refit fails).
+    fn refitted(&mut self, fitting: &Fitting) -> Option<Matrix3<f64>> {
+        *self
+            .refitted
+            .get_or_insert_with(|| refit(fitting.points, self.group, fitting.irls))
+    }
+}
+
+/// The module's three conditions for a group and two sides of it; the
+/// sides' fits made (nothing explained) in `side_fits`.
 fn are_two_motions(
     fitting: &Fitting,
-    group: &[usize],
+    union: &mut Union,
     sides: [&[usize]; 2],
     ln_tests: f64,
-    cached: &mut [Option<Cached>; 3],
+    side_fits: &mut [Option<Cached>; 2],
 ) -> bool {
-    if !passes_screen(fitting, group, sides) {
+    if !passes_screen(fitting, union.refitted(fitting), sides) {
         return false;
     }
     let none = Explained::none(fitting.points.len());
-    let [union_fit, a_fit, b_fit] = cached;
+    let [a_fit, b_fit] = side_fits;
     let residuals =
         |g: &[usize], cache: &mut Option<Cached>, pick: &dyn Fn(&GroupFit) -> Option<usize>| {
             let fitted = fit_given(fitting, g, &none, cache)?;
@@ -93,34 +138,36 @@ fn are_two_motions(
         return false;
     };
     // 2: neither explains most of the other.
-    let explains = |r: &[f64], s: &[usize]| {
-        2 * s.iter().filter(|&&i| r[i] <= fitting.thr_px).count() > s.len()
-    };
-    if explains(&ra, sides[1]) || explains(&rb, sides[0]) {
+    let thr_px = fitting.thr_px;
+    if explains(&ra, sides[1], thr_px) || explains(&rb, sides[0], thr_px) {
         return false;
     }
     // 3: the union's first model (its refitted F, or where the refit
     // fails its semi-calibrated F) against the sides'.
-    let Some(ru) = residuals(group, union_fit, &|_| Some(0)) else {
+    let Some(ru) = residuals(union.group, &mut union.fit, &|_| Some(0)) else {
         return false;
     };
     chow_p(&ru, [(sides[0], &ra), (sides[1], &rb)], fitting.thr_px) < SPLIT_ALPHA
 }
 
-/// The level of the screen before the three conditions: Chow's test with
-/// the refitted Fs alone (each side's and the union's, no background
-/// integral to make). A side's refitted F fits it about as closely as its
-/// best model, so the screen passes almost wherever condition 3 would (on
-/// the wide validation it changes 2 of 3 180 runs, the mean ME 6.019 →
-/// 6.021), and it saves most of the split's cost: the sides' models and
-/// their backgrounds (5.8 → 1.6 ms per AdelaideRMF scene).
+/// The level of the screen before the three conditions: conditions 2 and
+/// 3 with the refitted Fs alone (each side's and the union's, no
+/// background integral to make), Chow's test at this level. A side's
+/// refitted F fits it about as closely as its best model, so the screen
+/// passes almost wherever the conditions would (Chow's part changed 2 of
+/// the wide validation's 3 180 runs, the mean ME 6.019 → 6.021), and it
+/// saves most of the split's cost: the sides' models and their
+/// backgrounds (5.8 → 1.6 ms per AdelaideRMF scene with Chow's part
+/// alone; condition 2 added when the split by place came, which tries a
+/// second candidate, two regions of one motion, on most clusters).
 const SCREEN_ALPHA: f64 = 1e-2;
 
-/// Whether Chow's test with the refitted Fs of `group` and its `sides`
-/// gives p < [`SCREEN_ALPHA`].
-fn passes_screen(fitting: &Fitting, group: &[usize], sides: [&[usize]; 2]) -> bool {
+/// Whether neither side's refitted F explains most of the other side's
+/// matches and Chow's test with the refitted Fs of a group (`union`, None
+/// where its refit failed) and its `sides` gives p < [`SCREEN_ALPHA`].
+fn passes_screen(fitting: &Fitting, union: Option<Matrix3<f64>>, sides: [&[usize]; 2]) -> bool {
     let n = fitting.points.len();
-    let distances = |f: Option<nalgebra::Matrix3<f64>>, at: &[&[usize]]| {
+    let distances = |f: Option<Matrix3<f64>>, at: &[&[usize]]| {
         let mut r = vec![f64::INFINITY; n];
         if let Some(f) = f {
             for &i in at.iter().copied().flatten() {
@@ -131,10 +178,19 @@ fn passes_screen(fitting: &Fitting, group: &[usize], sides: [&[usize]; 2]) -> bo
         r
     };
     let fit = |g: &[usize]| refit(fitting.points, g, fitting.irls);
-    let ru = distances(fit(group), &sides);
-    let ra = distances(fit(sides[0]), &sides[..1]);
-    let rb = distances(fit(sides[1]), &sides[1..]);
+    let ra = distances(fit(sides[0]), &sides);
+    let rb = distances(fit(sides[1]), &sides);
+    if explains(&ra, sides[1], fitting.thr_px) || explains(&rb, sides[0], fitting.thr_px) {
+        return false;
+    }
+    let ru = distances(union, &sides);
     chow_p(&ru, [(sides[0], &ra), (sides[1], &rb)], fitting.thr_px) < SCREEN_ALPHA
+}
+
+/// Whether the model of Sampson distances `r` explains (within `thr_px`)
+/// more than half of `side`'s matches.
+fn explains(r: &[f64], side: &[usize], thr_px: f64) -> bool {
+    2 * side.iter().filter(|&&i| r[i] <= thr_px).count() > side.len()
 }
 
 /// Chow's test (Chow 1960) of one F for both sides against one F each,
@@ -166,7 +222,7 @@ pub(super) fn chow_p(union: &[f64], sides: [(&[usize], &[f64]); 2], thr_px: f64)
 #[cfg(test)]
 mod tests {
     use super::super::tests::{
-        background, camera, one_motion_in_two_regions, Motion, Scene, THR_PX,
+        background, camera, kept_together, one_motion_in_two_regions, Motion, Scene, THR_PX,
     };
     use super::super::{groups_of, select_clustered};
     use super::*;
@@ -228,8 +284,31 @@ mod tests {
         )
         .unwrap();
         assert_eq!(split.motions, 3);
+        // Without the sides: the objects lie side by side over the image's
+        // height, and 2-means cuts across both (no candidate).
         let kept = select_clustered(&s.points(), &groups, &[None, None], camera(), THR_PX).unwrap();
         assert!(kept.motions < 3, "without the sides: {}", kept.motions);
+    }
+
+    #[test]
+    fn two_objects_apart_one_cluster_holds_are_split_by_place() {
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        let mut s = Scene::default();
+        s.add_motion(&mut rng, &background(), 200, (-300.0, 300.0));
+        let left = Motion::new([0.0, -0.1, 0.02], [0.4, 0.0, -0.3]);
+        let right = Motion::new([0.05, 0.08, 0.0], [-0.2, 0.3, 0.1]);
+        s.add_motion_in(&mut rng, &left, 40, (-280.0, -160.0), (-200.0, -60.0));
+        s.add_motion_in(&mut rng, &right, 40, (80.0, 200.0), (60.0, 200.0));
+        let truth = &s.truth;
+        let of = |t| (0..truth.len()).filter(move |&i| truth[i] == t);
+        let union: Vec<usize> = of(1).chain(of(2)).collect();
+        let groups = vec![of(0).collect(), union];
+        // No merge given: the candidate is the group's two_means.
+        let sel = select_clustered(&s.points(), &groups, &[None, None], camera(), THR_PX).unwrap();
+        assert_eq!(sel.motions, 3);
+        for t in 1..=2 {
+            assert!(kept_together(&s.truth, &sel.labels, t) > 0.9, "object {t}");
+        }
     }
 
     #[test]
@@ -253,8 +332,23 @@ mod tests {
         let sides = groups_of(&s.truth);
         let union: Vec<usize> = sides.concat();
         let sides = [sides[0].clone(), sides[1].clone()];
-        let sel =
-            select_clustered(&s.points(), &[union], &[Some(sides)], camera(), THR_PX).unwrap();
+        let sel = select_clustered(
+            &s.points(),
+            std::slice::from_ref(&union),
+            &[Some(sides)],
+            camera(),
+            THR_PX,
+        )
+        .unwrap();
+        assert_eq!(sel.motions, 1);
+        // Nor by place: 2-means finds the two regions, and each one's F
+        // explains the other's matches.
+        let by_place = two_means(&s.points(), &union, FITTED_MATCHES + 1).unwrap();
+        assert!(
+            by_place.iter().all(|side| side.len() >= 140),
+            "{by_place:?}"
+        );
+        let sel = select_clustered(&s.points(), &[union], &[None], camera(), THR_PX).unwrap();
         assert_eq!(sel.motions, 1);
     }
 }
