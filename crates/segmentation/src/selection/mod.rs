@@ -227,7 +227,8 @@ fn check_scene(camera: Camera, thr_px: f64) -> Result<(), SelectionError> {
 /// a subset of the matches, `origin` saying which) by a-contrario
 /// detection over every match ([`nfa::detect`]; `camera` gives the
 /// background's domain and the focal prior of each group's semi-calibrated
-/// model), labelled so: a match
+/// model), each group first split in two by place where it holds two
+/// motions ([`split`], [`two_means::two_means`]), labelled so: a match
 /// of a detected group takes its motion; a group not detected joins, as a
 /// whole, the detected F that explains most of its matches within
 /// `thr_px` (those it explains take its label, the others the nearest
@@ -297,7 +298,9 @@ pub fn select_clustered(
     Ok(Selection::of(labels))
 }
 
-/// Labels after [`nfa::detect`]: the detected groups' matches keep their
+/// Labels after [`nfa::detect`] of the groups, each first replaced by the
+/// two sides of its [`two_means::two_means`] where they are two motions
+/// ([`split`]; no dendrogram here): the detected groups' matches keep their
 /// group; another group joins, as a whole, the detected F that explains
 /// (within `thr_px`, the band that explains a match in the detection) the
 /// most of its matches: those it explains take its label, the others the
@@ -314,8 +317,16 @@ fn by_nfa(
     thr_px: f64,
     irls: &IrlsParams,
 ) -> Vec<i32> {
-    let detections = nfa::detect(points, groups, origin, camera, thr_px, irls);
-    label_detected(points, groups, &detections, thr_px)
+    let fitting = nfa::Fitting {
+        points,
+        camera,
+        thr_px,
+        irls,
+    };
+    let no_merges: Vec<Option<Sides>> = vec![None; groups.len()];
+    let (groups, fits) = split::split_groups(&fitting, groups, &no_merges);
+    let detections = nfa::detect_fitted(&fitting, &groups, fits, origin);
+    label_detected(points, &groups, &detections, thr_px)
 }
 
 /// Every index in `indices` names one of `points`

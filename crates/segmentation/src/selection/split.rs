@@ -224,7 +224,7 @@ mod tests {
     use super::super::tests::{
         background, camera, kept_together, one_motion_in_two_regions, Motion, Scene, THR_PX,
     };
-    use super::super::{groups_of, select_clustered};
+    use super::super::{groups_of, select_clustered, select_groups, GroupOrigin};
     use super::*;
     use rand::SeedableRng;
     use rand_chacha::ChaCha8Rng;
@@ -290,8 +290,9 @@ mod tests {
         assert!(kept.motions < 3, "without the sides: {}", kept.motions);
     }
 
-    #[test]
-    fn two_objects_apart_one_cluster_holds_are_split_by_place() {
+    /// The background and two objects of 40 matches in boxes apart, moving
+    /// apart; with the groups: the background's and the objects' union.
+    fn two_objects_apart() -> (Scene, Vec<Vec<usize>>) {
         let mut rng = ChaCha8Rng::seed_from_u64(7);
         let mut s = Scene::default();
         s.add_motion(&mut rng, &background(), 200, (-300.0, 300.0));
@@ -303,8 +304,31 @@ mod tests {
         let of = |t| (0..truth.len()).filter(move |&i| truth[i] == t);
         let union: Vec<usize> = of(1).chain(of(2)).collect();
         let groups = vec![of(0).collect(), union];
+        (s, groups)
+    }
+
+    #[test]
+    fn two_objects_apart_one_cluster_holds_are_split_by_place() {
+        let (s, groups) = two_objects_apart();
         // No merge given: the candidate is the group's two_means.
         let sel = select_clustered(&s.points(), &groups, &[None, None], camera(), THR_PX).unwrap();
+        assert_eq!(sel.motions, 3);
+        for t in 1..=2 {
+            assert!(kept_together(&s.truth, &sel.labels, t) > 0.9, "object {t}");
+        }
+    }
+
+    #[test]
+    fn groups_beyond_a_clustered_subset_are_split_by_place_too() {
+        let (s, groups) = two_objects_apart();
+        let sel = select_groups(
+            &s.points(),
+            &groups,
+            GroupOrigin::Extended,
+            camera(),
+            THR_PX,
+        )
+        .unwrap();
         assert_eq!(sel.motions, 3);
         for t in 1..=2 {
             assert!(kept_together(&s.truth, &sel.labels, t) > 0.9, "object {t}");
