@@ -34,10 +34,13 @@ pub struct Args {
     /// Focal length prior in pixels [default: the sidecar's `focal_prior`,
     /// else max(W, H)]. The five-point default solves the essential matrices
     /// at this focal; semical uses it as the prior of the focal-length KDE
-    /// (its plausibility band and the fallback of failed solves). A prior
-    /// within 0.5-4 x the true focal costs at most 1.2 points of ME
+    /// (its plausibility band and the fallback of failed solves). The prior
+    /// need not be right: with the five-point hypotheses of the previous
+    /// default, 0.5-4 x the true focal cost at most 1.2 points of ME
     /// (HOPE-F-faithful validation scenes 11.2-12.4 %, AdelaideRMF
-    /// 3.7-4.3 %), 0.25 x about 1.5 points (results/focal_prior/).
+    /// 3.7-4.3 %), 0.25 x about 1.5 points (results/focal_prior/); the
+    /// default's semi-calibrated models at 0.5 x and 2 x max(W, H) move the
+    /// validation ME by less than 0.2 points (results/notes/selection.md).
     #[arg(long, value_name = "PX", allow_hyphen_values = true, value_parser = parse_focal)]
     pub focal: Option<f64>,
     /// Parameters: a TOML file with a `[pipeline]` table (an experiment file
