@@ -3,9 +3,11 @@
 //! `thr_px`, though neither object's own F explains the other
 //! (results/notes/selection.md, ninth and tenth rounds).
 //!
-//! A group has up to two candidate splits: the two clusters of its last
-//! merge of two clusters of more than [`FITTED_MATCHES`] matches
-//! ([`clustering::dendrogram::last_sides`]), then its matches in two by
+//! A group has up to two candidate splits: where every match was
+//! clustered, the two clusters of its last merge of two clusters of more
+//! than [`FITTED_MATCHES`] matches
+//! ([`clustering::dendrogram::last_sides`]); then, also beyond a clustered
+//! subset, its matches in two by
 //! where they lie ([`two_means`]: objects are compact, and a motion merged
 //! into another's cluster rarely forms a sizeable cluster of its own
 //! before it joins, so no merge of the dendrogram separates it). The first
