@@ -178,15 +178,15 @@ pub fn select(
     thr_px: f64,
 ) -> Result<Selection, SelectionError> {
     check(points, labels, camera, thr_px)?;
-    let irls = refit_params(thr_px);
     let groups = groups_of(labels);
+    let no_merges = vec![None; groups.len()];
     let labels = by_nfa(
         points,
         &groups,
+        &no_merges,
         GroupOrigin::Clustered,
         &camera,
         thr_px,
-        &irls,
     );
     Ok(Selection::of(labels))
 }
@@ -255,8 +255,8 @@ pub fn select_groups(
 ) -> Result<Selection, SelectionError> {
     check_indices(points, groups.iter().flatten())?;
     check_scene(camera, thr_px)?;
-    let irls = refit_params(thr_px);
-    let labels = by_nfa(points, groups, origin, &camera, thr_px, &irls);
+    let no_merges = vec![None; groups.len()];
+    let labels = by_nfa(points, groups, &no_merges, origin, &camera, thr_px);
     Ok(Selection::of(labels))
 }
 
@@ -285,46 +285,46 @@ pub fn select_clustered(
     let in_sides = sides.iter().flatten().flatten().flatten();
     check_indices(points, groups.iter().flatten().chain(in_sides))?;
     check_scene(camera, thr_px)?;
-    let irls = refit_params(thr_px);
-    let fitting = nfa::Fitting {
+    let labels = by_nfa(
         points,
-        camera: &camera,
+        groups,
+        sides,
+        GroupOrigin::Clustered,
+        &camera,
         thr_px,
-        irls: &irls,
-    };
-    let (groups, fits) = split::split_groups(&fitting, groups, sides);
-    let detections = nfa::detect_fitted(&fitting, &groups, fits, GroupOrigin::Clustered);
-    let labels = label_detected(points, &groups, &detections, thr_px);
+    );
     Ok(Selection::of(labels))
 }
 
 /// Labels after [`nfa::detect`] of the groups, each first replaced by the
-/// two sides of its [`two_means::two_means`] where they are two motions
-/// ([`split`]; no dendrogram here): the detected groups' matches keep their
-/// group; another group joins, as a whole, the detected F that explains
-/// (within `thr_px`, the band that explains a match in the detection) the
-/// most of its matches: those it explains take its label, the others the
-/// detected F nearest to them within `thr_px`, or are outliers; a match of
-/// no group takes the detected F nearest to it within `thr_px`, or is an
-/// outlier. Last, a match labelled by the nearest F alone (its group, if
-/// any, did not bring it to that F) that several detected Fs explain takes
-/// the label of its neighbours among those ([`vote::vote_ambiguous`]).
+/// two sides of its last merge (`sides[g]`, None where no dendrogram gives
+/// one) or else of its [`two_means::two_means`] where they are two motions
+/// ([`split`]), the refits made with [`refit_params`]: the detected groups'
+/// matches keep their group; another group joins, as a whole, the detected
+/// F that explains (within `thr_px`, the band that explains a match in the
+/// detection) the most of its matches: those it explains take its label,
+/// the others the detected F nearest to them within `thr_px`, or are
+/// outliers; a match of no group takes the detected F nearest to it within
+/// `thr_px`, or is an outlier. Last, a match labelled by the nearest F
+/// alone (its group, if any, did not bring it to that F) that several
+/// detected Fs explain takes the label of its neighbours among those
+/// ([`vote::vote_ambiguous`]).
 fn by_nfa(
     points: &Correspondences,
     groups: &[Vec<usize>],
+    sides: &[Option<Sides>],
     origin: GroupOrigin,
     camera: &Camera,
     thr_px: f64,
-    irls: &IrlsParams,
 ) -> Vec<i32> {
+    let irls = refit_params(thr_px);
     let fitting = nfa::Fitting {
         points,
         camera,
         thr_px,
-        irls,
+        irls: &irls,
     };
-    let no_merges: Vec<Option<Sides>> = vec![None; groups.len()];
-    let (groups, fits) = split::split_groups(&fitting, groups, &no_merges);
+    let (groups, fits) = split::split_groups(&fitting, groups, sides);
     let detections = nfa::detect_fitted(&fitting, &groups, fits, origin);
     label_detected(points, &groups, &detections, thr_px)
 }
