@@ -93,41 +93,7 @@ fn pair_wins(ctx: &Context, h: usize, chosen: &Chosen, explained: &Explained) ->
         return false;
     };
     let (other, _) = fit.significance(&given, ctx.ln_tests, ctx.fitting.thr_px);
-    let proto = std::env::var("SCTL_PROTO_XCHOW").map_or(0, |v| v.parse().unwrap_or(0));
-    let meaningful = alone.ln_nfa + other.ln_nfa < chosen.ln_nfa;
-    if !other.is_significant() {
-        return false;
-    }
-    match proto {
-        0 => meaningful,
-        1 => meaningful || chow_apart(ctx, &ctx.groups[chosen.group], group_h, explained),
-        _ => chow_apart(ctx, &ctx.groups[chosen.group], group_h, explained),
-    }
-}
-
-fn chow_apart(ctx: &Context, a: &[usize], b: &[usize], explained: &Explained) -> bool {
-    let a: Vec<usize> = explained.counting(a).collect();
-    let b: Vec<usize> = explained.counting(b).collect();
-    let points = ctx.fitting.points;
-    let n = points.len();
-    let distances = |f: Option<nalgebra::Matrix3<f64>>| {
-        let mut r = vec![f64::INFINITY; n];
-        if let Some(f) = f {
-            for &i in a.iter().chain(&b) {
-                r[i] = geometry::sampson_distance(&f, points.point1(i), points.point2(i));
-            }
-        }
-        r
-    };
-    let union: Vec<usize> = a.iter().chain(&b).copied().collect();
-    let fit = |g: &[usize]| super::refit(points, g, ctx.fitting.irls);
-    let (ra, rb, ru) = (
-        distances(fit(&a)),
-        distances(fit(&b)),
-        distances(fit(&union)),
-    );
-    super::split::chow_p(&ru, [(&a, &ra), (&b, &rb)], ctx.fitting.thr_px)
-        < super::split::SPLIT_ALPHA
+    other.is_significant() && alone.ln_nfa + other.ln_nfa < chosen.ln_nfa
 }
 
 /// `residuals` with `matches` at +∞: a detection's distances that leave

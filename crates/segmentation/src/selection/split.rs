@@ -24,7 +24,7 @@
 
 use super::nfa::{fit_given, Cached, Explained, Fitting, GroupFit, FITTED_MATCHES};
 use super::refit;
-use super::two_means::{two_means, two_means_by_displacement};
+use super::two_means::two_means;
 use clustering::dendrogram::Sides;
 use nalgebra::Matrix3;
 use statrs::distribution::{ContinuousCDF, FisherSnedecor};
@@ -54,25 +54,7 @@ pub(super) fn split_groups(
         .zip(sides)
         .map(|(group, sides)| {
             let by_place = two_means(fitting.points, group, FITTED_MATCHES + 1);
-            let proto = std::env::var("SCTL_PROTO_FLOW").map_or(0, |v| v.parse().unwrap_or(0));
-            let by_flow = (proto > 0)
-                .then(|| two_means_by_displacement(fitting.points, group, FITTED_MATCHES + 1))
-                .flatten();
-            if proto == 2 {
-                sides
-                    .iter()
-                    .cloned()
-                    .chain(by_flow)
-                    .chain(by_place)
-                    .collect()
-            } else {
-                sides
-                    .iter()
-                    .cloned()
-                    .chain(by_place)
-                    .chain(by_flow)
-                    .collect()
-            }
+            sides.iter().cloned().chain(by_place).collect()
         })
         .collect();
     // The tests: every group and side that may be scored, N − 7 thresholds.
@@ -159,10 +141,7 @@ fn are_two_motions(
     };
     // 2: neither explains most of the other.
     let thr_px = fitting.thr_px;
-    if either_explains(
-        explains(&ra, sides[1], thr_px),
-        explains(&rb, sides[0], thr_px),
-    ) {
+    if explains(&ra, sides[1], thr_px) || explains(&rb, sides[0], thr_px) {
         return false;
     }
     // 3: the union's first model (its refitted F, or where the refit
@@ -203,24 +182,11 @@ fn passes_screen(fitting: &Fitting, union: Option<Matrix3<f64>>, sides: [&[usize
     let fit = |g: &[usize]| refit(fitting.points, g, fitting.irls);
     let ra = distances(fit(sides[0]), &sides);
     let rb = distances(fit(sides[1]), &sides);
-    if either_explains(
-        explains(&ra, sides[1], fitting.thr_px),
-        explains(&rb, sides[0], fitting.thr_px),
-    ) {
+    if explains(&ra, sides[1], fitting.thr_px) || explains(&rb, sides[0], fitting.thr_px) {
         return false;
     }
     let ru = distances(union, &sides);
     chow_p(&ru, [(sides[0], &ra), (sides[1], &rb)], fitting.thr_px) < SCREEN_ALPHA
-}
-
-/// Prototype (`SCTL_PROTO_EXPL`): a split refused only when each side's
-/// model explains the other's matches.
-fn either_explains(a: bool, b: bool) -> bool {
-    if std::env::var("SCTL_PROTO_EXPL").is_ok() {
-        a && b
-    } else {
-        a || b
-    }
 }
 
 /// Whether the model of Sampson distances `r` explains (within `thr_px`)

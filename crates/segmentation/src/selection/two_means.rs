@@ -24,33 +24,13 @@ type Point = [f64; 4];
 /// match changes side or [`LLOYD_ROUNDS`] rounds. The sides keep the
 /// group's order; None when one has fewer than `min` matches.
 pub fn two_means(points: &Correspondences, group: &[usize], min: usize) -> Option<[Vec<usize>; 2]> {
-    two_means_of(group, min, |i| {
-        let (a, b) = (points.point1(i), points.point2(i));
-        [a[0], a[1], b[0], b[1]]
-    })
-}
-
-/// `group` in two by 2-means over the matches' displacements `(x₂ − x₁,
-/// y₂ − y₁)`, as [`two_means`] does over their points.
-pub fn two_means_by_displacement(
-    points: &Correspondences,
-    group: &[usize],
-    min: usize,
-) -> Option<[Vec<usize>; 2]> {
-    two_means_of(group, min, |i| {
-        let (a, b) = (points.point1(i), points.point2(i));
-        [b[0] - a[0], b[1] - a[1], 0.0, 0.0]
-    })
-}
-
-fn two_means_of(
-    group: &[usize],
-    min: usize,
-    at: impl Fn(usize) -> Point,
-) -> Option<[Vec<usize>; 2]> {
     if group.len() < 2 * min.max(1) {
         return None;
     }
+    let at = |i: usize| -> Point {
+        let (a, b) = (points.point1(i), points.point2(i));
+        [a[0], a[1], b[0], b[1]]
+    };
     let farthest = |from: Point| {
         let distance = |&i: &usize| squared_distance(at(i), from);
         *group
