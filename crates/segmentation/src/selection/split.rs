@@ -3,14 +3,17 @@
 //! `thr_px`, though neither object's own F explains the other
 //! (results/notes/selection.md, ninth and tenth rounds).
 //!
-//! A group has up to two candidate splits: where every match was
+//! A group has up to three candidate splits: where every match was
 //! clustered, the two clusters of its last merge of two clusters of more
 //! than [`FITTED_MATCHES`] matches
 //! ([`clustering::dendrogram::last_sides`]); then, also beyond a clustered
 //! subset, its matches in two by
 //! where they lie ([`two_means`]: objects are compact, and a motion merged
 //! into another's cluster rarely forms a sizeable cluster of its own
-//! before it joins, so no merge of the dendrogram separates it). The first
+//! before it joins, so no merge of the dendrogram separates it), and in
+//! two by how they move ([`two_means_by_displacement`]: two objects side
+//! by side, which the split by place may cut across, differ in their
+//! displacements; eleventh round). The first
 //! candidate whose two sides pass replaces the group, when
 //! 1. each side is significant alone (its best model's NFA < 1 over every
 //!    match, as in [`super::nfa::detect`]);
@@ -24,7 +27,7 @@
 
 use super::nfa::{fit_given, Cached, Explained, Fitting, GroupFit, FITTED_MATCHES};
 use super::refit;
-use super::two_means::two_means;
+use super::two_means::{two_means, two_means_by_displacement};
 use clustering::dendrogram::Sides;
 use nalgebra::Matrix3;
 use statrs::distribution::{ContinuousCDF, FisherSnedecor};
@@ -37,7 +40,8 @@ pub const SPLIT_ALPHA: f64 = 1e-6;
 
 /// `groups`, each replaced by the two sides of its first candidate split
 /// (`sides[g]`, indices into the matches, one entry per group; then the
-/// group's [`two_means`]) where they are two motions (the module's three
+/// group's [`two_means`], then its [`two_means_by_displacement`]) where
+/// they are two motions (the module's three
 /// conditions); with the fits made on the way (nothing explained), which
 /// the detection reuses.
 pub(super) fn split_groups(
@@ -53,8 +57,11 @@ pub(super) fn split_groups(
         .iter()
         .zip(sides)
         .map(|(group, sides)| {
-            let by_place = two_means(fitting.points, group, FITTED_MATCHES + 1);
-            sides.iter().cloned().chain(by_place).collect()
+            let min = FITTED_MATCHES + 1;
+            let by_place = two_means(fitting.points, group, min);
+            let by_displacement = two_means_by_displacement(fitting.points, group, min);
+            let by_merge = sides.iter().cloned();
+            by_merge.chain(by_place).chain(by_displacement).collect()
         })
         .collect();
     // The tests: every group and side that may be scored, N − 7 thresholds.
@@ -271,12 +278,16 @@ mod tests {
         (s, a, b)
     }
 
+    /// The background's group and the objects' union of [`two_objects`].
+    fn background_and_union(s: &Scene, a: &[usize], b: &[usize]) -> Vec<Vec<usize>> {
+        let background: Vec<usize> = (0..s.truth.len()).filter(|&i| s.truth[i] == 0).collect();
+        vec![background, a.iter().chain(b).copied().collect()]
+    }
+
     #[test]
     fn two_objects_one_cluster_holds_are_split_by_their_last_merge() {
         let (s, a, b) = two_objects();
-        let background: Vec<usize> = (0..s.truth.len()).filter(|&i| s.truth[i] == 0).collect();
-        let union: Vec<usize> = a.iter().chain(&b).copied().collect();
-        let groups = vec![background, union];
+        let groups = background_and_union(&s, &a, &b);
         let split = select_clustered(
             &s.points(),
             &groups,
@@ -286,10 +297,38 @@ mod tests {
         )
         .unwrap();
         assert_eq!(split.motions, 3);
-        // Without the sides: the objects lie side by side over the image's
-        // height, and 2-means cuts across both (no candidate).
-        let kept = select_clustered(&s.points(), &groups, &[None, None], camera(), THR_PX).unwrap();
-        assert!(kept.motions < 3, "without the sides: {}", kept.motions);
+        // The last merge's sides are the first candidate: the groups are
+        // the objects exactly, not the sides of a 2-means.
+        let (points, irls) = (s.points(), super::super::refit_params(THR_PX));
+        let fitting = Fitting {
+            points: &points,
+            camera: &camera(),
+            thr_px: THR_PX,
+            irls: &irls,
+        };
+        let (out, _) = split_groups(&fitting, &groups, &[None, Some([a.clone(), b.clone()])]);
+        assert_eq!(out, [groups[0].clone(), a, b]);
+    }
+
+    #[test]
+    fn two_objects_side_by_side_are_split_by_their_displacements() {
+        let (s, a, b) = two_objects();
+        let groups = background_and_union(&s, &a, &b);
+        // The objects lie side by side over the image's height: 2-means
+        // over the points cuts across both, over the displacements it
+        // finds them.
+        let points = s.points();
+        let by_place = two_means(&points, &groups[1], FITTED_MATCHES + 1).unwrap();
+        let holds_both = |side: &Vec<usize>| {
+            let of_a = side.iter().filter(|i| a.contains(i)).count();
+            of_a >= 5 && side.len() - of_a >= 5
+        };
+        assert!(by_place.iter().all(holds_both), "{by_place:?}");
+        let sel = select_clustered(&points, &groups, &[None, None], camera(), THR_PX).unwrap();
+        assert_eq!(sel.motions, 3);
+        for t in 1..=2 {
+            assert!(kept_together(&s.truth, &sel.labels, t) > 0.9, "object {t}");
+        }
     }
 
     /// The background and two objects of 40 matches in boxes apart, moving

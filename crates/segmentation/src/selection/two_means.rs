@@ -1,6 +1,7 @@
-//! A group of matches in two by where they lie: 2-means (Lloyd's
-//! algorithm, Lloyd 1982) over the matches' points `(x₁, y₁, x₂, y₂)`, a
-//! candidate split of [`super::split`] for two objects one cluster holds.
+//! A group of matches in two by where they lie, or by how they move:
+//! 2-means (Lloyd's algorithm, Lloyd 1982) over the matches' points `(x₁,
+//! y₁, x₂, y₂)` or over their displacements `(x₂ − x₁, y₂ − y₁)`, candidate
+//! splits of [`super::split`] for two objects one cluster holds.
 //!
 //! Written out rather than taken from a clustering crate: two centres, a
 //! deterministic start and at most [`LLOYD_ROUNDS`] rounds over at most a
@@ -24,13 +25,37 @@ type Point = [f64; 4];
 /// match changes side or [`LLOYD_ROUNDS`] rounds. The sides keep the
 /// group's order; None when one has fewer than `min` matches.
 pub fn two_means(points: &Correspondences, group: &[usize], min: usize) -> Option<[Vec<usize>; 2]> {
+    two_means_over(group, min, |i| {
+        let (a, b) = (points.point1(i), points.point2(i));
+        [a[0], a[1], b[0], b[1]]
+    })
+}
+
+/// `group` in two by 2-means over the matches' displacements `(x₂ − x₁,
+/// y₂ − y₁)`, as [`two_means`] over their points: two objects side by
+/// side, which 2-means over the points may cut across, differ in how they
+/// move.
+pub fn two_means_by_displacement(
+    points: &Correspondences,
+    group: &[usize],
+    min: usize,
+) -> Option<[Vec<usize>; 2]> {
+    two_means_over(group, min, |i| {
+        let (a, b) = (points.point1(i), points.point2(i));
+        [b[0] - a[0], b[1] - a[1], 0.0, 0.0]
+    })
+}
+
+/// 2-means of `group` over the points `at` gives (the start, rounds and
+/// ties of [`two_means`]).
+fn two_means_over(
+    group: &[usize],
+    min: usize,
+    at: impl Fn(usize) -> Point,
+) -> Option<[Vec<usize>; 2]> {
     if group.len() < 2 * min.max(1) {
         return None;
     }
-    let at = |i: usize| -> Point {
-        let (a, b) = (points.point1(i), points.point2(i));
-        [a[0], a[1], b[0], b[1]]
-    };
     let farthest = |from: Point| {
         let distance = |&i: &usize| squared_distance(at(i), from);
         *group
@@ -100,6 +125,28 @@ mod tests {
         let mut found = sides.clone();
         found.sort();
         assert_eq!(found, [left, right]);
+    }
+
+    #[test]
+    fn one_box_of_two_displacements_is_split_by_displacement_alone() {
+        // One box of image 1, its matches moved by +5 px or −5 px in
+        // alternation: over the points each side holds both kinds, over
+        // the displacements the sides are the two kinds.
+        let p1: Vec<[f64; 2]> = (0..40)
+            .map(|k| [(k % 8) as f64 * 10.0, (k / 8) as f64 * 10.0])
+            .collect();
+        let shift = |k: usize| if k % 2 == 0 { 5.0 } else { -5.0 };
+        let p2: Vec<[f64; 2]> = (0..40).map(|k| [p1[k][0] + shift(k), p1[k][1]]).collect();
+        let points = Correspondences::new(&p1, &p2).unwrap();
+        let group: Vec<usize> = (0..40).collect();
+        let mut sides = two_means_by_displacement(&points, &group, 8).expect("two sides");
+        sides.sort();
+        let (even, odd): (Vec<usize>, Vec<usize>) = group.iter().partition(|&&k| k % 2 == 0);
+        assert_eq!(sides, [even, odd]);
+        let by_place = two_means(&points, &group, 8).expect("two sides");
+        assert!(by_place
+            .iter()
+            .all(|side| side.iter().any(|k| k % 2 == 0) && side.iter().any(|k| k % 2 == 1)));
     }
 
     #[test]
