@@ -326,73 +326,7 @@ fn by_nfa(
     };
     let (groups, fits) = split::split_groups(&fitting, groups, sides);
     let detections = nfa::detect_fitted(&fitting, &groups, fits, origin);
-    let labels = label_detected(points, &groups, &detections, thr_px);
-    match std::env::var("SCTL_PROTO_MERGE")
-        .ok()
-        .and_then(|v| v.parse::<f64>().ok())
-    {
-        Some(alpha) => merge_one_motion(points, labels, &irls, thr_px, alpha),
-        None => labels,
-    }
-}
-
-/// Prototype (`SCTL_PROTO_MERGE=α`): two motions found are one when the
-/// union's refitted F explains more than half of each and Chow's test
-/// gives p ≥ α; the pair of largest p first, until none.
-fn merge_one_motion(
-    points: &Correspondences,
-    mut labels: Vec<i32>,
-    irls: &IrlsParams,
-    thr_px: f64,
-    alpha: f64,
-) -> Vec<i32> {
-    let n = points.len();
-    loop {
-        let count = labels.iter().copied().max().map_or(0, |m| m + 1) as usize;
-        let members: Vec<Vec<usize>> = (0..count)
-            .map(|l| (0..n).filter(|&i| labels[i] == l as i32).collect())
-            .collect();
-        let distances = |f: Option<Matrix3<f64>>, at: &[&[usize]]| {
-            let mut r = vec![f64::INFINITY; n];
-            if let Some(f) = f {
-                for &i in at.iter().copied().flatten() {
-                    r[i] = geometry::sampson_distance(&f, points.point1(i), points.point2(i));
-                }
-            }
-            r
-        };
-        let explains = |r: &[f64], side: &[usize]| {
-            2 * side.iter().filter(|&&i| r[i] <= thr_px).count() > side.len()
-        };
-        let mut best: Option<(f64, usize, usize)> = None;
-        for i in 0..count {
-            for j in i + 1..count {
-                let (a, b) = (&members[i], &members[j]);
-                if a.len() <= nfa::FITTED_MATCHES || b.len() <= nfa::FITTED_MATCHES {
-                    continue;
-                }
-                let union: Vec<usize> = a.iter().chain(b).copied().collect();
-                let sides: [&[usize]; 2] = [a, b];
-                let ru = distances(refit(points, &union, irls), &sides);
-                if !explains(&ru, a) || !explains(&ru, b) {
-                    continue;
-                }
-                let ra = distances(refit(points, a, irls), &sides);
-                let rb = distances(refit(points, b, irls), &sides);
-                let p = split::chow_p(&ru, [(a, &ra), (b, &rb)], thr_px);
-                if p >= alpha && best.map_or(true, |(q, _, _)| p > q) {
-                    best = Some((p, i, j));
-                }
-            }
-        }
-        let Some((_, i, j)) = best else {
-            return labels;
-        };
-        for l in labels.iter_mut().filter(|l| **l == j as i32) {
-            *l = i as i32;
-        }
-        labels = renumber(&labels);
-    }
+    label_detected(points, &groups, &detections, thr_px)
 }
 
 /// Every index in `indices` names one of `points`
