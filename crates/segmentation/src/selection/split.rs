@@ -156,55 +156,7 @@ fn are_two_motions(
     let Some(ru) = residuals(union.group, &mut union.fit, &|_| Some(0)) else {
         return false;
     };
-    if std::env::var("SCTL_PROTO_POLISHCHOW").is_ok() {
-        return polished_chow_p(fitting, union, sides) < alpha();
-    }
-    chow_p(&ru, [(sides[0], &ra), (sides[1], &rb)], fitting.thr_px) < alpha()
-}
-
-fn alpha() -> f64 {
-    std::env::var("SCTL_PROTO_ALPHA")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(SPLIT_ALPHA)
-}
-
-/// Prototype (`SCTL_PROTO_POLISHCHOW`): Chow's test with the union's and
-/// the sides' refitted Fs each polished (Levenberg–Marquardt on the
-/// robust Sampson cost) on its matches within `thr_px`.
-fn polished_chow_p(fitting: &Fitting, union: &mut Union, sides: [&[usize]; 2]) -> f64 {
-    let points = fitting.points;
-    let n = points.len();
-    let thr_px = fitting.thr_px;
-    let distances = |f: Option<Matrix3<f64>>| {
-        let mut r = vec![f64::INFINITY; n];
-        if let Some(f) = f {
-            for &i in sides.iter().copied().flatten() {
-                r[i] = geometry::sampson_distance(&f, points.point1(i), points.point2(i));
-            }
-        }
-        r
-    };
-    let polished = |g: &[usize], f: Option<Matrix3<f64>>| -> Option<Matrix3<f64>> {
-        let f = f?;
-        let within: Vec<usize> = g
-            .iter()
-            .copied()
-            .filter(|&i| {
-                geometry::sampson_distance(&f, points.point1(i), points.point2(i)) <= thr_px
-            })
-            .collect();
-        if within.len() <= FITTED_MATCHES {
-            return Some(f);
-        }
-        Some(geometry::polish_fundamental(points, &within, &f).map_or(f, |p| p.f))
-    };
-    let group = union.group;
-    let fu = polished(group, union.refitted(fitting));
-    let fa = polished(sides[0], refit(points, sides[0], fitting.irls));
-    let fb = polished(sides[1], refit(points, sides[1], fitting.irls));
-    let (ru, ra, rb) = (distances(fu), distances(fa), distances(fb));
-    chow_p(&ru, [(sides[0], &ra), (sides[1], &rb)], thr_px)
+    chow_p(&ru, [(sides[0], &ra), (sides[1], &rb)], fitting.thr_px) < SPLIT_ALPHA
 }
 
 /// The level of the screen before the three conditions: conditions 2 and
