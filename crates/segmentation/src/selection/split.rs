@@ -1,7 +1,7 @@
 //! A cluster split in two, when it holds two motions: T-Linkage joins two
 //! small objects that hypotheses drawn or refitted across both fit within
 //! `thr_px`, though neither object's own F explains the other
-//! (results/notes/selection.md, ninth and tenth rounds).
+//! (results/notes/selection.md, ninth to eleventh rounds).
 //!
 //! A group has up to three candidate splits: where every match was
 //! clustered, the two clusters of its last merge of two clusters of more
@@ -13,7 +13,7 @@
 //! before it joins, so no merge of the dendrogram separates it), and in
 //! two by how they move ([`two_means_by_displacement`]: two objects side
 //! by side, which the split by place may cut across, differ in their
-//! displacements; eleventh round). The first
+//! displacements). The first
 //! candidate whose two sides pass replaces the group, when
 //! 1. each side is significant alone (its best model's NFA < 1 over every
 //!    match, as in [`super::nfa::detect`]);
