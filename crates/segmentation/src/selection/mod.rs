@@ -227,8 +227,9 @@ fn check_scene(camera: Camera, thr_px: f64) -> Result<(), SelectionError> {
 /// a subset of the matches, `origin` saying which) by a-contrario
 /// detection over every match ([`nfa::detect`]; `camera` gives the
 /// background's domain and the focal prior of each group's semi-calibrated
-/// model), each group first split in two by place where it holds two
-/// motions ([`split`], [`two_means::two_means`]), labelled so: a match
+/// model), each group first split in two by place or by displacement
+/// where it holds two motions ([`split`], [`two_means::two_means`],
+/// [`two_means::two_means_by_displacement`]), labelled so: a match
 /// of a detected group takes its motion; a group not detected joins, as a
 /// whole, the detected F that explains most of its matches within
 /// `thr_px` (those it explains take its label, the others the nearest
@@ -264,7 +265,8 @@ pub fn select_groups(
 /// ([`GroupOrigin::Clustered`]), each group first replaced by the two
 /// sides of its last merge (`sides[g]`, from
 /// [`clustering::dendrogram::last_sides`]), or else by the two sides of
-/// its [`two_means::two_means`], where they are two motions (the
+/// its [`two_means::two_means`], or else by those of its
+/// [`two_means::two_means_by_displacement`], where they are two motions (the
 /// conditions of [`split`]).
 ///
 /// Errors: those of [`select_groups`], a side's index out of range,
@@ -298,7 +300,8 @@ pub fn select_clustered(
 
 /// Labels after [`nfa::detect`] of the groups, each first replaced by the
 /// two sides of its last merge (`sides[g]`, None where no dendrogram gives
-/// one) or else of its [`two_means::two_means`] where they are two motions
+/// one) or else of its [`two_means::two_means`] or else of its
+/// [`two_means::two_means_by_displacement`] where they are two motions
 /// ([`split`]), the refits made with [`refit_params`]: the detected groups'
 /// matches keep their group; another group joins, as a whole, the detected
 /// F that explains (within `thr_px`, the band that explains a match in the
